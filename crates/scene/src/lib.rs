@@ -1,1 +1,36 @@
-//! placeholder
+//! Scene description for eyeadapt: plain data, loading and validation, no rendering behaviour.
+//!
+//! A [`Scene`] is loaded from a TOML file by [`load_scene`] (format: `docs/scene-format.md`).
+//! It owns triangle [`Mesh`]es in world space, [`Material`]s referenced by [`MaterialId`],
+//! delta [`Light`]s (point and spot), an optional constant environment and the [`Camera`].
+//! Quads, boxes and spheres are tessellated at load time; OBJ files come in through `tobj`.
+//! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
+//! reports all of them at once ([`SceneError`]). Warnings (a missing MTL, an unknown material)
+//! do not stop loading: the affected triangles get the loud [`Material::error`] material.
+//!
+//! Units: lengths are arbitrary scene units; colours are linear sRGB (Rec. 709 primaries, D65
+//! white); `emission` and environment values are radiance, light `intensity` is radiant
+//! intensity (radiance × area / distance² behaves as in Mitsuba 3's `rgb` emitters).
+
+mod camera;
+mod diagnostic;
+mod format;
+mod light;
+mod load;
+mod material;
+mod mesh;
+mod obj;
+mod shapes;
+mod transform;
+
+pub use crate::camera::Camera;
+pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
+pub use crate::light::Light;
+pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
+pub use crate::material::{Bsdf, Material, MaterialId};
+pub use crate::mesh::Mesh;
+pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
+pub use crate::transform::Transform;
+
+/// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).
+pub type Rgb = glam::Vec3;

@@ -1,1 +1,27 @@
-//! placeholder
+//! The renderer: an obvhs CWBVH ([`Accel`]), stateless Owen-scrambled Sobol sampling
+//! ([`SampleStream`]), BSDFs, the light set, a path tracer with next-event estimation and MIS
+//! ([`trace`]), the film with its AOVs ([`render`] → [`Frame`]) and the eye-centred
+//! hemispherical sensor ([`eye_sensor`]).
+//!
+//! Build a [`SceneData`] once from an `eyeadapt_scene::Scene`, then render any number of
+//! [`View`]s from it. Results depend only on the scene, the view and the settings, never on
+//! the number of threads.
+
+mod accel;
+mod bsdf;
+mod eye;
+mod film;
+mod integrator;
+mod lights;
+mod microfacet;
+mod sampler;
+mod scene_data;
+
+pub use crate::accel::{Accel, Hit, InputTri, TriInfo};
+pub use crate::bsdf::{Bsdf, BsdfSample};
+pub use crate::eye::{EyeEstimate, EyeSettings, eye_sensor, sample_cardioid};
+pub use crate::film::{Frame, RenderSettings, RenderStats, View, render};
+pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
+pub use crate::lights::{LightSet, luminance};
+pub use crate::sampler::{SampleStream, hash_key, mix64};
+pub use crate::scene_data::SceneData;

@@ -1,0 +1,89 @@
+//! Materials: a BSDF plus optional one-sided emission.
+//!
+//! ```toml
+//! [[materials]]
+//! name = "white"
+//! type = "diffuse"
+//! reflectance = [0.73, 0.73, 0.73]
+//!
+//! [[materials]]
+//! name = "lamp"
+//! type = "diffuse"
+//! reflectance = [0.78, 0.78, 0.78]
+//! emission = [17.0, 12.0, 4.0]      # radiance, emitted on the front side only
+//!
+//! [[materials]]
+//! name = "brushed"
+//! type = "conductor"                # GGX microfacet metal; roughness 0 = perfect mirror
+//! roughness = 0.2                   # GGX alpha
+//! eta = [0.2, 0.92, 1.1]            # complex index of refraction per channel (default: gold-ish "Au")
+//! k = [3.9, 2.45, 2.14]
+//!
+//! [[materials]]
+//! name = "bench"
+//! type = "plastic"                  # GGX dielectric coating over a Lambertian base
+//! reflectance = [0.4, 0.3, 0.2]     # diffuse base
+//! roughness = 0.05                  # GGX alpha of the coating, clamped to >= 0.01
+//! ior = 1.5
+//! ```
+use crate::Rgb;
+
+/// Index into [`crate::Scene::materials`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MaterialId(pub u32);
+
+/// The scattering part of a material.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian reflector.
+    Diffuse { reflectance: Rgb },
+    /// GGX conductor with a per-channel complex IOR; `alpha == 0` is a perfect mirror.
+    Conductor {
+        alpha: f32,
+        eta: Rgb,
+        k: Rgb,
+        specular_reflectance: Rgb,
+    },
+    /// GGX dielectric coating (`ior`) over a Lambertian base (`reflectance`), after Mitsuba's
+    /// `roughplastic` with `nonlinear = false`.
+    Plastic {
+        reflectance: Rgb,
+        alpha: f32,
+        ior: f32,
+    },
+}
+
+/// A named material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    pub bsdf: Bsdf,
+    /// Emitted radiance on the front side (zero for non-emitters).
+    pub emission: Rgb,
+}
+
+impl Material {
+    /// The loud stand-in for missing or unknown materials: a saturated magenta diffuser that
+    /// no one mistakes for intended content (it does not emit, so it cannot light the scene).
+    pub fn error() -> Material {
+        Material {
+            name: "<error>".into(),
+            bsdf: Bsdf::Diffuse {
+                reflectance: Rgb::new(0.8, 0.0, 0.8),
+            },
+            emission: Rgb::ZERO,
+        }
+    }
+
+    pub fn diffuse(name: &str, reflectance: Rgb) -> Material {
+        Material {
+            name: name.into(),
+            bsdf: Bsdf::Diffuse { reflectance },
+            emission: Rgb::ZERO,
+        }
+    }
+
+    pub fn is_emissive(&self) -> bool {
+        self.emission.max_element() > 0.0
+    }
+}

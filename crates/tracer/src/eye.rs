@@ -1,0 +1,174 @@
+//! The eye-centred hemispherical sensor of Gruson, Ribardière and Cozot (estimators.md §1).
+//!
+//! With the sensor's radius → 0, the average irradiance over a hemisphere whose pole is the
+//! gaze axis `a` is a cardioid-weighted integral of all incident radiance:
+//!
+//! ```text
+//! x_eye = ∫_{S²} L(eye, ω) K(ω) dω,   K(ω) = (1 + cos θ) / 4,   θ = ∠(ω, a)
+//! ```
+//!
+//! It is estimated with two strategies combined by MIS (power heuristic): directions drawn
+//! from the cardioid itself (pdf K/π, so each sample weighs π) followed by an ordinary path,
+//! and light sampling from the eye (the only way to see point and spot lights). The sensor is
+//! not geometry: it never appears in the image and does not occlude anything.
+//!
+//! By default every frame uses the same random numbers (common random numbers), so Monte-Carlo
+//! noise does not turn into frame-to-frame jitter of the adaptation colour.
+use crate::film::View;
+use crate::integrator::{Origin, PathSettings, power_heuristic, trace, visible};
+use crate::sampler::{SampleStream, hash_key};
+use crate::scene_data::SceneData;
+use glam::{DMat3, DVec3, Vec3, Vec3A};
+use rayon::prelude::*;
+use std::f32::consts::PI;
+
+/// Sensor parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EyeSettings {
+    /// Sensor paths per frame (estimators.md §10: 16 384).
+    pub samples: u32,
+    /// Common random numbers across frames (default true).
+    pub common_random_numbers: bool,
+    /// The `eye_fov` ablation: only directions inside the camera frustum count.
+    pub fov_only: bool,
+    pub seed: u64,
+}
+
+impl Default for EyeSettings {
+    fn default() -> Self {
+        EyeSettings {
+            samples: 16_384,
+            common_random_numbers: true,
+            fov_only: false,
+            seed: 0,
+        }
+    }
+}
+
+/// The sensor reading: mean irradiance (linear sRGB) and the covariance of that mean.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EyeEstimate {
+    pub mean_rgb: DVec3,
+    /// Covariance matrix of `mean_rgb` (sample covariance / N).
+    pub cov_rgb: DMat3,
+    pub samples: u64,
+    pub invalid_samples: u64,
+}
+
+#[derive(Clone, Copy, Default)]
+struct Partial {
+    sum: DVec3,
+    outer: DMat3,
+    n: u64,
+    invalid: u64,
+}
+
+/// Samples per parallel task; fixed so that the reduction order never depends on threads.
+const CHUNK: u32 = 256;
+
+/// Direction with cos θ = μ around `axis` drawn from the cardioid pdf (1 + cos θ)/(4π).
+#[inline]
+pub fn sample_cardioid(u: [f32; 2]) -> (f32, f32) {
+    let mu = 2.0 * u[0].sqrt() - 1.0;
+    (mu, 2.0 * PI * u[1])
+}
+
+/// Estimates the eye sensor at `view.position`, pole on `view.forward`.
+pub fn eye_sensor(
+    scene: &SceneData,
+    view: &View,
+    settings: &EyeSettings,
+    frame: u32,
+    path: PathSettings,
+) -> EyeEstimate {
+    let key = if settings.common_random_numbers {
+        hash_key(&[settings.seed, 0xE7E_5E45, 0])
+    } else {
+        hash_key(&[settings.seed, 0xE7E_5E45, 1, frame as u64])
+    };
+    let eye = Vec3A::from(view.position);
+    let basis = view.basis();
+    let (r, u, axis) = basis;
+    let one = |i: u32| -> Option<Vec3A> {
+        let mut s = SampleStream::new(key, i);
+        let u_pick = s.next_1d();
+        let _ = s.next_1d();
+        let _ = s.next_2d();
+        let u_light = s.next_2d();
+        let u_dir = s.next_2d();
+        let mut x = Vec3A::ZERO;
+        // Light sampling from the eye (includes the direct term of point and spot lights).
+        if let Some(ls) = scene.lights.sample(eye, u_pick, u_light) {
+            let cos = ls.wi.dot(axis);
+            let k = (1.0 + cos) * 0.25;
+            if k > 0.0
+                && (!settings.fov_only || view.in_frustum(basis, ls.wi))
+                && visible(scene, eye, ls.wi, ls.dist)
+            {
+                let w = if ls.delta {
+                    1.0
+                } else {
+                    power_heuristic(ls.pdf, k / PI)
+                };
+                x += ls.li * (k * w / ls.pdf);
+            }
+        }
+        // A cardioid-distributed path.
+        let (mu, phi) = sample_cardioid(u_dir);
+        let st = (1.0 - mu * mu).max(0.0).sqrt();
+        let dir = (r * (st * phi.cos()) + u * (st * phi.sin()) + axis * mu).normalize();
+        if (!settings.fov_only || view.in_frustum(basis, dir)) && mu > -1.0 {
+            let pdf = (1.0 + mu) / (4.0 * PI);
+            let p = trace(
+                scene,
+                eye,
+                dir,
+                Origin::Sampled { pdf },
+                &mut s,
+                path,
+                false,
+            );
+            x += p.l * PI;
+        }
+        x.is_finite().then_some(x)
+    };
+    let chunks = settings.samples.div_ceil(CHUNK);
+    let partials: Vec<Partial> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let mut p = Partial::default();
+            for i in c * CHUNK..((c + 1) * CHUNK).min(settings.samples) {
+                match one(i) {
+                    Some(x) => {
+                        let v = Vec3::from(x).as_dvec3();
+                        p.sum += v;
+                        p.outer += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
+                        p.n += 1;
+                    }
+                    None => p.invalid += 1,
+                }
+            }
+            p
+        })
+        .collect();
+    let total = partials.iter().fold(Partial::default(), |a, p| Partial {
+        sum: a.sum + p.sum,
+        outer: a.outer + p.outer,
+        n: a.n + p.n,
+        invalid: a.invalid + p.invalid,
+    });
+    let n = total.n.max(1) as f64;
+    let mean = total.sum / n;
+    let m = DMat3::from_cols(mean * mean.x, mean * mean.y, mean * mean.z);
+    let cov = if total.n > 1 {
+        (total.outer - m * n) * (1.0 / (n - 1.0)) * (1.0 / n)
+    } else {
+        DMat3::ZERO
+    };
+    EyeEstimate {
+        mean_rgb: mean,
+        cov_rgb: cov,
+        samples: total.n + total.invalid,
+        invalid_samples: total.invalid,
+    }
+}

@@ -1,0 +1,215 @@
+//! Rendering one frame: camera rays, per-pixel accumulation in f64, and the AOV buffers.
+//!
+//! Each pixel is computed entirely by one task from its own deterministic sample streams and
+//! written into its slot, so the frame is bit-identical for any thread count. Samples whose
+//! radiance is NaN or infinite are counted and dropped (the pixel averages the rest).
+use crate::integrator::{Origin, PathSettings, trace};
+use crate::sampler::{SampleStream, hash_key};
+use crate::scene_data::SceneData;
+use glam::{DVec3, Vec3, Vec3A};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Where the camera is and what it sees (a static camera or one pose of a camera path).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    pub position: Vec3,
+    /// Unit gaze direction.
+    pub forward: Vec3,
+    pub up: Vec3,
+    /// Vertical field of view in degrees.
+    pub fov_deg: f32,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl View {
+    pub fn from_camera(c: &eyeadapt_scene::Camera) -> View {
+        View {
+            position: c.position,
+            forward: c.forward(),
+            up: c.up,
+            fov_deg: c.fov_deg,
+            width: c.width,
+            height: c.height,
+        }
+    }
+
+    /// (right, up, forward), orthonormal.
+    pub fn basis(&self) -> (Vec3A, Vec3A, Vec3A) {
+        let f = Vec3A::from(self.forward).normalize();
+        let r = f.cross(self.up.into()).normalize();
+        (r, r.cross(f), f)
+    }
+
+    /// Unit direction through image position (x, y) in pixels (y down, (0,0) top-left corner).
+    #[inline]
+    pub fn ray_dir(&self, basis: (Vec3A, Vec3A, Vec3A), x: f32, y: f32) -> Vec3A {
+        let (r, u, f) = basis;
+        let tan = (self.fov_deg.to_radians() * 0.5).tan();
+        let aspect = self.width as f32 / self.height as f32;
+        let sx = (2.0 * x / self.width as f32 - 1.0) * tan * aspect;
+        let sy = (1.0 - 2.0 * y / self.height as f32) * tan;
+        (f + r * sx + u * sy).normalize()
+    }
+
+    /// True when direction `d` (unit) lies inside the view frustum.
+    pub fn in_frustum(&self, basis: (Vec3A, Vec3A, Vec3A), d: Vec3A) -> bool {
+        let (r, u, f) = basis;
+        let z = d.dot(f);
+        if z <= 0.0 {
+            return false;
+        }
+        let tan = (self.fov_deg.to_radians() * 0.5).tan();
+        let aspect = self.width as f32 / self.height as f32;
+        (d.dot(r) / z).abs() <= tan * aspect && (d.dot(u) / z).abs() <= tan
+    }
+}
+
+/// Sampling settings of one frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenderSettings {
+    pub spp: u32,
+    pub path: PathSettings,
+    pub seed: u64,
+    /// Frame number: part of every sample key, so frames get independent noise.
+    pub frame: u32,
+}
+
+/// Counters of one render.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub samples: u64,
+    /// Samples dropped because their radiance was NaN or infinite.
+    pub invalid_samples: u64,
+    pub seconds: f64,
+}
+
+/// A rendered frame: beauty plus AOVs, row-major, y down. Each AOV is the per-pixel mean.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Frame {
+    pub width: usize,
+    pub height: usize,
+    pub rgb: Vec<[f32; 3]>,
+    pub albedo: Vec<[f32; 3]>,
+    pub achromatic: Vec<[f32; 3]>,
+    pub irradiance: Vec<[f32; 3]>,
+    pub normal: Vec<[f32; 3]>,
+    /// Mean distance to the first hit over the samples that hit (0 where none did).
+    pub depth: Vec<f32>,
+    /// Fraction of samples whose camera ray hit an emitter directly.
+    pub emitter: Vec<f32>,
+    /// Fraction of samples whose camera ray hit any surface.
+    pub hit: Vec<f32>,
+    pub stats: RenderStats,
+}
+
+#[derive(Default, Clone, Copy)]
+struct PixelAcc {
+    l: DVec3,
+    a: DVec3,
+    e: DVec3,
+    albedo: DVec3,
+    normal: DVec3,
+    depth: f64,
+    hits: u32,
+    emitters: u32,
+    valid: u32,
+    invalid: u32,
+}
+
+fn d3(v: Vec3A) -> DVec3 {
+    Vec3::from(v).as_dvec3()
+}
+
+fn f3(v: DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+/// Renders one frame of `scene` from `view`.
+pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Frame {
+    let start = Instant::now();
+    let (w, h) = (view.width as usize, view.height as usize);
+    let basis = view.basis();
+    let origin = Vec3A::from(view.position);
+    let render_pixel = |x: usize, y: usize| -> PixelAcc {
+        let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
+        let mut acc = PixelAcc::default();
+        for i in 0..settings.spp {
+            let mut s = SampleStream::new(key, i);
+            let j = s.next_2d();
+            let _ = s.next_2d();
+            let d = view.ray_dir(basis, x as f32 + j[0], y as f32 + j[1]);
+            let p = trace(
+                scene,
+                origin,
+                d,
+                Origin::Camera,
+                &mut s,
+                settings.path,
+                true,
+            );
+            let parts = [p.l, p.achromatic, p.irradiance, p.albedo];
+            if parts.iter().any(|v| !v.is_finite()) {
+                acc.invalid += 1;
+                continue;
+            }
+            acc.valid += 1;
+            acc.l += d3(p.l);
+            acc.a += d3(p.achromatic);
+            acc.e += d3(p.irradiance);
+            acc.albedo += d3(p.albedo);
+            if p.hit {
+                acc.hits += 1;
+                acc.depth += p.depth as f64;
+                acc.normal += d3(p.normal);
+            }
+            if p.emitter {
+                acc.emitters += 1;
+            }
+        }
+        acc
+    };
+    let rows: Vec<Vec<PixelAcc>> = (0..h)
+        .into_par_iter()
+        .map(|y| (0..w).map(|x| render_pixel(x, y)).collect())
+        .collect();
+    let mut f = Frame {
+        width: w,
+        height: h,
+        ..Frame::default()
+    };
+    let n = w * h;
+    for v in [
+        &mut f.rgb,
+        &mut f.albedo,
+        &mut f.achromatic,
+        &mut f.irradiance,
+        &mut f.normal,
+    ] {
+        v.reserve_exact(n);
+    }
+    for acc in rows.iter().flatten() {
+        let k = if acc.valid > 0 {
+            1.0 / acc.valid as f64
+        } else {
+            0.0
+        };
+        f.rgb.push(f3(acc.l * k));
+        f.achromatic.push(f3(acc.a * k));
+        f.irradiance.push(f3(acc.e * k));
+        f.albedo.push(f3(acc.albedo * k));
+        f.normal.push(f3(acc.normal.normalize_or_zero()));
+        f.depth.push(if acc.hits > 0 {
+            (acc.depth / acc.hits as f64) as f32
+        } else {
+            0.0
+        });
+        f.emitter.push(acc.emitters as f32 * k as f32);
+        f.hit.push(acc.hits as f32 * k as f32);
+        f.stats.invalid_samples += acc.invalid as u64;
+        f.stats.samples += (acc.valid + acc.invalid) as u64;
+    }
+    f.stats.seconds = start.elapsed().as_secs_f64();
+    f
+}
