@@ -1,3 +1,45 @@
-pub fn main() -> std::process::ExitCode {
-    std::process::ExitCode::SUCCESS
+//! The `eyeadapt` command line: argument parsing, exit codes and progress display. All work is
+//! done by the library crates; each subcommand lives in its own module.
+//!
+//! Exit codes: 0 done; 2 bad input or usage; 75 transient failure worth a retry; 1 other.
+
+mod args;
+mod cmd_bench;
+mod cmd_render;
+
+use clap::Parser;
+use eyeadapt_sequencer::Failure;
+use std::process::ExitCode;
+
+pub use crate::args::{Cli, Command};
+
+/// Parses the command line, runs the command and maps failures to exit codes.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("eyeadapt: error: {f}");
+            ExitCode::from(f.exit_code())
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    if let Some(t) = cli.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build_global()
+            .map_err(|e| Failure::Other(format!("cannot start {t} threads: {e}")))?;
+    }
+    match cli.command {
+        Command::Render(a) => cmd_render::run(a),
+        Command::Bench(a) => cmd_bench::run(a),
+        Command::Scenes => {
+            for (name, what) in eyeadapt_scene::builtin_scenes() {
+                println!("builtin:{name:<28} {what}");
+            }
+            Ok(())
+        }
+    }
 }

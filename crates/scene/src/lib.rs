@@ -12,6 +12,7 @@
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
 //! intensity (radiance × area / distance² behaves as in Mitsuba 3's `rgb` emitters).
 
+mod builtin;
 mod camera;
 mod diagnostic;
 mod format;
@@ -23,6 +24,7 @@ mod obj;
 mod shapes;
 mod transform;
 
+pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::light::Light;

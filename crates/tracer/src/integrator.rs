@@ -82,11 +82,11 @@ impl Frame {
         }
     }
     #[inline]
-    pub fn to_local(&self, v: Vec3A) -> Vec3A {
+    pub fn to_local(self, v: Vec3A) -> Vec3A {
         Vec3A::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
     }
     #[inline]
-    pub fn to_world(&self, v: Vec3A) -> Vec3A {
+    pub fn to_world(self, v: Vec3A) -> Vec3A {
         self.s * v.x + self.t * v.y + self.n * v.z
     }
 }

@@ -50,7 +50,7 @@ const fn sobol_directions() -> [[u32; 32]; 4] {
     v
 }
 
-#[inline]
+#[cfg(test)]
 fn sobol(mut index: u32, dim: usize) -> u32 {
     let mut x = 0;
     let mut bit = 0;
@@ -96,6 +96,20 @@ pub fn hash_key(words: &[u64]) -> u64 {
         .fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w)))
 }
 
+/// The four Sobol dimensions of one index, computed together (only set bits are visited).
+#[inline]
+fn sobol4(mut index: u32) -> [u32; 4] {
+    let mut x = [0u32; 4];
+    while index != 0 {
+        let bit = index.trailing_zeros() as usize;
+        for (d, v) in x.iter_mut().enumerate() {
+            *v ^= SOBOL[d][bit];
+        }
+        index &= index - 1;
+    }
+    x
+}
+
 /// The random numbers of one sample (one camera path, one sensor path).
 #[derive(Clone, Copy, Debug)]
 pub struct SampleStream {
@@ -103,8 +117,8 @@ pub struct SampleStream {
     index: u32,
     dim: u32,
     chunk: u32,
-    shuffled: u32,
-    chunk_seed: u32,
+    /// The scrambled values of the current chunk's four dimensions, as Q0.32.
+    values: [u32; 4],
 }
 
 impl SampleStream {
@@ -114,19 +128,25 @@ impl SampleStream {
             index,
             dim: 0,
             chunk: u32::MAX,
-            shuffled: 0,
-            chunk_seed: 0,
+            values: [0; 4],
         };
         s.enter_chunk(0);
         s
     }
 
+    /// Computes the chunk's four values at once: shuffle the index, take the Sobol point,
+    /// Owen-scramble each coordinate with its own seed.
     #[inline]
     fn enter_chunk(&mut self, chunk: u32) {
         self.chunk = chunk;
-        self.chunk_seed =
-            mix64(self.key ^ (chunk as u64).wrapping_mul(0xd1b5_4a32_d192_ed03)) as u32;
-        self.shuffled = nested_uniform_scramble(self.index, self.chunk_seed);
+        let seed = mix64(self.key ^ (chunk as u64).wrapping_mul(0xd1b5_4a32_d192_ed03));
+        let shuffled = nested_uniform_scramble(self.index, seed as u32);
+        let v = sobol4(shuffled);
+        // Each coordinate needs an independent scramble: seeds that are functions of one
+        // another (e.g. affine) make the scrambled point non-uniform in 4-D and bias estimates.
+        for (d, (out, x)) in self.values.iter_mut().zip(v).enumerate() {
+            *out = nested_uniform_scramble(x, mix64(seed ^ ((d as u64 + 1) << 56)) as u32);
+        }
     }
 
     /// Skips to the start of the next 4-D chunk (keeps 2-D requests on aligned pairs).
@@ -142,13 +162,8 @@ impl SampleStream {
         if chunk != self.chunk {
             self.enter_chunk(chunk);
         }
-        let d = (self.dim % 4) as usize;
+        let v = self.values[(self.dim % 4) as usize];
         self.dim += 1;
-        let v = sobol(self.shuffled, d);
-        let v = nested_uniform_scramble(
-            v,
-            mix64(self.chunk_seed as u64 ^ ((d as u64 + 1) << 40)) as u32,
-        );
         // 24 bits so the result is exactly representable and strictly below 1.
         (v >> 8) as f32 * (1.0 / 16_777_216.0)
     }

@@ -112,6 +112,9 @@ fn closed_sphere_converges_to_le_over_one_minus_rho() {
         ..Material::diffuse("inside", rho)
     });
     let mut sphere = sphere_mesh(Vec3::ZERO, 2.0, 3);
+    // Flat facets: Le/(1-ρ) is exact for any closed polyhedron, but smooth shading normals
+    // lose the rays sampled below the geometric surface and bias the answer low.
+    sphere.normals.clear();
     // Front (emitting) side facing inwards.
     for t in &mut sphere.indices {
         t.swap(1, 2);
@@ -125,7 +128,7 @@ fn closed_sphere_converges_to_le_over_one_minus_rho() {
         12,
         8,
     ));
-    let px = mean_and_se(&data, &view, 8, 16, 200);
+    let px = mean_and_se(&data, &view, 8, 64, 200);
     let expected = (le / (Vec3::ONE - rho)).as_dvec3().to_array();
     assert_converges(&px, expected);
 }
@@ -354,6 +357,7 @@ fn eye_sensor_inside_closed_sphere_reads_pi_le_over_one_minus_rho() {
         ..Material::diffuse("inside", rho)
     });
     let mut sphere = sphere_mesh(Vec3::ZERO, 3.0, 3);
+    sphere.normals.clear(); // flat facets, see closed_sphere_converges_to_le_over_one_minus_rho
     for t in &mut sphere.indices {
         t.swap(1, 2);
     }

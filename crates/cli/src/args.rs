@@ -1,0 +1,97 @@
+//! What the user typed (stage one of argument handling); commands validate further.
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "eyeadapt",
+    version,
+    about = "Path-traced sequences with eye-centred chromatic adaptation"
+)]
+pub struct Cli {
+    /// Worker threads (default: all cores). Results are identical for any value.
+    #[arg(long, global = true, value_parser = clap::value_parser!(usize))]
+    pub threads: Option<usize>,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render one still: DIR/raw.exr (beauty + AOVs) and DIR/preview.png.
+    Render(RenderArgs),
+    /// Benchmark the tracer on the Cornell box and print samples/s.
+    Bench(BenchArgs),
+    /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).
+    Scenes,
+}
+
+/// Sampling options shared by `render` and `sequence`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SamplingArgs {
+    /// Samples per pixel.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16_777_216))]
+    pub spp: Option<u32>,
+    /// Image width in pixels.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=32768))]
+    pub width: Option<u32>,
+    /// Image height in pixels.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=32768))]
+    pub height: Option<u32>,
+    /// Longest path in segments, Mitsuba's `max_depth` (1 = emitters only, 2 = direct light,
+    /// -1 = unlimited).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_max_depth)]
+    pub max_depth: Option<i32>,
+    /// Path length at which Russian roulette starts (Mitsuba's `rr_depth`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub rr_depth: Option<u32>,
+    /// Random seed; the same seed gives the same bits.
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+fn parse_max_depth(s: &str) -> Result<i32, String> {
+    let v: i32 = s
+        .parse()
+        .map_err(|_| format!("\"{s}\" is not an integer"))?;
+    if v == -1 || (1..=1024).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} must be -1 (unlimited) or between 1 and 1024"))
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.toml, or .xml in Mitsuba 3's format) or builtin:NAME.
+    pub scene: String,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+    /// Output directory.
+    #[arg(long, default_value = "out/render")]
+    pub out: PathBuf,
+    /// Preview exposure in stops (PNG only; the EXR is never scaled).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Also write render statistics as JSON to this file.
+    #[arg(long)]
+    pub stats_json: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Scene to benchmark.
+    #[arg(long, default_value = "builtin:cornell-box")]
+    pub scene: String,
+    #[arg(long, default_value_t = 64)]
+    pub spp: u32,
+    /// Image size (square).
+    #[arg(long, default_value_t = 256)]
+    pub size: u32,
+    /// Mitsuba's max_depth.
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
+    pub max_depth: i32,
+    /// Timed repetitions (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: u32,
+}

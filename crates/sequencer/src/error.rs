@@ -1,0 +1,58 @@
+//! The failure classes that decide the process exit code (0 done, 2 bad input or usage,
+//! 75 transient — worth a retry, 1 anything else).
+use std::fmt;
+use std::io;
+use std::path::Path;
+
+#[derive(Debug)]
+pub enum Failure {
+    /// Bad input or usage: exit 2.
+    Input(String),
+    /// A condition a retry can fix (disk full, I/O error, busy): exit 75 (EX_TEMPFAIL).
+    Transient(String),
+    /// Anything else: exit 1.
+    Other(String),
+}
+
+impl Failure {
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Failure::Input(_) => 2,
+            Failure::Transient(_) => 75,
+            Failure::Other(_) => 1,
+        }
+    }
+
+    /// Classifies an I/O error on `path` while doing `what`.
+    pub fn io(what: &str, path: &Path, e: &io::Error) -> Failure {
+        let msg = format!("{what} {}: {e}", path.display());
+        // ENOSPC 28, EDQUOT 122, EIO 5, EAGAIN 11, EINTR 4, ESTALE 116, ETIMEDOUT 110, EBUSY 16
+        match e.raw_os_error() {
+            Some(28 | 122 | 5 | 11 | 4 | 116 | 110 | 16) => Failure::Transient(msg),
+            _ => match e.kind() {
+                io::ErrorKind::StorageFull
+                | io::ErrorKind::Interrupted
+                | io::ErrorKind::TimedOut
+                | io::ErrorKind::WouldBlock => Failure::Transient(msg),
+                _ => Failure::Other(msg),
+            },
+        }
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Failure::Input(m) | Failure::Other(m) => write!(f, "{m}"),
+            Failure::Transient(m) => write!(f, "{m} (transient: retrying may succeed)"),
+        }
+    }
+}
+
+impl std::error::Error for Failure {}
+
+impl From<eyeadapt_scene::SceneError> for Failure {
+    fn from(e: eyeadapt_scene::SceneError) -> Self {
+        Failure::Input(e.to_string())
+    }
+}

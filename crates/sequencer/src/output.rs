@@ -1,0 +1,250 @@
+//! Files a render writes: the raw frame as OpenEXR (beauty + AOVs), sRGB PNG previews, and
+//! the atomic write-then-rename every output goes through.
+//!
+//! EXR layout: one part, PIZ compression, increasing line order (so the bytes do not depend
+//! on compression-thread timing), f32 channels `R G B`, `albedo.{R,G,B}`,
+//! `wcam_achromatic.{R,G,B}`, `irradiance.{R,G,B}`, `N.{X,Y,Z}` (first-hit shading normal),
+//! `Z` (first-hit distance, 0 where nothing was hit), `mask.emitter` and `mask.hit`
+//! (fractions of the pixel's samples that saw an emitter / any surface).
+//!
+//! PNG preview tone curve: `sRGB_encode(clamp(rgb · 2^exposure, 0, 1))`, 8 bits, with the
+//! IEC 61966-2-1 transfer function. No tone mapping, so colours below 1 are exact (the HSV
+//! read-outs of the paper's figures are taken on these values); anything brighter clips.
+use crate::error::Failure;
+use exr::prelude::*;
+// exr's prelude brings its own `Result`; ours is the standard one.
+type Result<T, E = Failure> = std::result::Result<T, E>;
+use eyeadapt_tracer::Frame;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The temporary name a file is written under before it is renamed into place.
+pub fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+}
+
+/// Writes `path` atomically: `write` fills a temporary file in the same directory, which is
+/// flushed to disk and renamed over `path`. A crash leaves either the old file or the new one.
+pub fn atomic_write(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), Failure>,
+) -> Result<(), Failure> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| Failure::io("cannot create directory", dir, &e))?;
+    }
+    let tmp = temp_path(path);
+    let result = write(&tmp).and_then(|()| {
+        let f = fs::File::open(&tmp).map_err(|e| Failure::io("cannot reopen", &tmp, &e))?;
+        f.sync_all()
+            .map_err(|e| Failure::io("cannot sync", &tmp, &e))?;
+        fs::rename(&tmp, path).map_err(|e| Failure::io("cannot rename into place", path, &e))
+    });
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Writes bytes atomically.
+pub fn atomic_write_bytes(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    atomic_write(path, |tmp| {
+        let mut f = fs::File::create(tmp).map_err(|e| Failure::io("cannot create", tmp, &e))?;
+        f.write_all(bytes)
+            .map_err(|e| Failure::io("cannot write", tmp, &e))
+    })
+}
+
+fn exr_failure(path: &Path, e: exr::error::Error) -> Failure {
+    match e {
+        exr::error::Error::Io(io) => Failure::io("cannot write EXR", path, &io),
+        other => Failure::Other(format!("cannot write EXR {}: {other}", path.display())),
+    }
+}
+
+/// The named channels of a frame, in the order they are written.
+fn channels(frame: &Frame) -> Vec<(String, Vec<f32>)> {
+    let mut out = Vec::new();
+    let rgb3 =
+        |prefix: &str, v: &[[f32; 3]], names: [&str; 3], out: &mut Vec<(String, Vec<f32>)>| {
+            for (c, n) in names.iter().enumerate() {
+                out.push((format!("{prefix}{n}"), v.iter().map(|p| p[c]).collect()));
+            }
+        };
+    rgb3("", &frame.rgb, ["R", "G", "B"], &mut out);
+    rgb3("albedo.", &frame.albedo, ["R", "G", "B"], &mut out);
+    rgb3(
+        "wcam_achromatic.",
+        &frame.achromatic,
+        ["R", "G", "B"],
+        &mut out,
+    );
+    rgb3("irradiance.", &frame.irradiance, ["R", "G", "B"], &mut out);
+    rgb3("N.", &frame.normal, ["X", "Y", "Z"], &mut out);
+    out.push(("Z".into(), frame.depth.clone()));
+    out.push(("mask.emitter".into(), frame.emitter.clone()));
+    out.push(("mask.hit".into(), frame.hit.clone()));
+    out
+}
+
+/// Writes the raw frame with all AOVs (atomically).
+pub fn write_exr(path: &Path, frame: &Frame) -> Result<(), Failure> {
+    let list: smallvec::SmallVec<[AnyChannel<FlatSamples>; 4]> = channels(frame)
+        .into_iter()
+        .map(|(name, data)| AnyChannel::new(name.as_str(), FlatSamples::F32(data)))
+        .collect();
+    let layer = Layer::new(
+        (frame.width, frame.height),
+        LayerAttributes::named("frame"),
+        Encoding {
+            line_order: LineOrder::Increasing,
+            ..Encoding::SMALL_FAST_LOSSLESS
+        },
+        AnyChannels::sort(list),
+    );
+    atomic_write(path, |tmp| {
+        Image::from_layer(layer)
+            .write()
+            .non_parallel()
+            .to_file(tmp)
+            .map_err(|e| exr_failure(tmp, e))
+    })
+}
+
+/// Reads a raw frame written by [`write_exr`] (missing AOV channels come back as zeros).
+pub fn read_exr(path: &Path) -> Result<Frame, Failure> {
+    let image = read_first_flat_layer_from_file(path).map_err(|e| match e {
+        exr::error::Error::Io(io) => Failure::io("cannot read EXR", path, &io),
+        other => Failure::Input(format!(
+            "{}: not a readable EXR frame: {other}",
+            path.display()
+        )),
+    })?;
+    let layer = image.layer_data;
+    let (w, h) = (layer.size.width(), layer.size.height());
+    let get = |name: &str| -> Vec<f32> {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .map(|c| c.sample_data.values_as_f32().collect())
+            .unwrap_or_else(|| vec![0.0; w * h])
+    };
+    let rgb3 = |prefix: &str, names: [&str; 3]| -> Vec<[f32; 3]> {
+        let [a, b, c] = names.map(|n| get(&format!("{prefix}{n}")));
+        (0..w * h).map(|i| [a[i], b[i], c[i]]).collect()
+    };
+    Ok(Frame {
+        width: w,
+        height: h,
+        rgb: rgb3("", ["R", "G", "B"]),
+        albedo: rgb3("albedo.", ["R", "G", "B"]),
+        achromatic: rgb3("wcam_achromatic.", ["R", "G", "B"]),
+        irradiance: rgb3("irradiance.", ["R", "G", "B"]),
+        normal: rgb3("N.", ["X", "Y", "Z"]),
+        depth: get("Z"),
+        emitter: get("mask.emitter"),
+        hit: get("mask.hit"),
+        stats: Default::default(),
+    })
+}
+
+/// IEC 61966-2-1 encoding of one linear value in [0, 1].
+pub fn srgb_encode(c: f32) -> f32 {
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// 8-bit sRGB bytes of a linear image with the documented preview curve.
+pub fn preview_bytes(rgb: &[[f32; 3]], exposure_ev: f32) -> Vec<u8> {
+    let k = 2f32.powf(exposure_ev);
+    rgb.iter()
+        .flat_map(|p| {
+            p.map(|c| {
+                let v = if c.is_finite() {
+                    (c * k).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                (srgb_encode(v) * 255.0 + 0.5) as u8
+            })
+        })
+        .collect()
+}
+
+/// Writes an sRGB PNG preview of a linear image (atomically).
+pub fn write_png(
+    path: &Path,
+    rgb: &[[f32; 3]],
+    width: usize,
+    height: usize,
+    exposure_ev: f32,
+) -> Result<(), Failure> {
+    let bytes = preview_bytes(rgb, exposure_ev);
+    let mut encoded = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut encoded)
+        .write_image_checked(&bytes, width as u32, height as u32)
+        .map_err(|e| Failure::Other(format!("cannot encode PNG {}: {e}", path.display())))?;
+    atomic_write_bytes(path, &encoded)
+}
+
+trait WriteChecked {
+    fn write_image_checked(self, bytes: &[u8], w: u32, h: u32) -> image::ImageResult<()>;
+}
+
+impl<W: Write> WriteChecked for image::codecs::png::PngEncoder<W> {
+    fn write_image_checked(self, bytes: &[u8], w: u32, h: u32) -> image::ImageResult<()> {
+        use image::ImageEncoder;
+        self.write_image(bytes, w, h, image::ExtendedColorType::Rgb8)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exr_round_trip_is_bit_exact_for_every_channel() {
+        let dir = tempfile::tempdir().unwrap();
+        let n = 6 * 4;
+        let v3 = |k: f32| {
+            (0..n)
+                .map(|i| [i as f32 * k, -(i as f32) * k, 0.5 * k])
+                .collect::<Vec<_>>()
+        };
+        let frame = Frame {
+            width: 6,
+            height: 4,
+            rgb: v3(1.0),
+            albedo: v3(0.1),
+            achromatic: v3(0.2),
+            irradiance: v3(3.0),
+            normal: v3(0.01),
+            depth: (0..n).map(|i| i as f32 * 0.3).collect(),
+            emitter: (0..n).map(|i| (i % 2) as f32).collect(),
+            hit: vec![1.0; n],
+            stats: Default::default(),
+        };
+        let path = dir.path().join("f.exr");
+        write_exr(&path, &frame).unwrap();
+        let back = read_exr(&path).unwrap();
+        assert_eq!(back, frame);
+        // No temporary file is left behind.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn preview_curve_is_srgb_with_clipping() {
+        let b = preview_bytes(&[[0.0, 0.214_041_14, 1.5]], 0.0);
+        assert_eq!(b, vec![0, 128, 255]);
+        assert_eq!(preview_bytes(&[[0.25, f32::NAN, -1.0]], 1.0)[1..], [0, 0]);
+    }
+}

@@ -1,0 +1,104 @@
+//! `eyeadapt render`: one still frame of a scene with its outputs.
+use crate::error::Failure;
+use crate::output::{write_exr, write_png};
+use eyeadapt_scene::Scene;
+use eyeadapt_tracer::{Frame, PathSettings, RenderSettings, SceneData, View, render};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Command-line overrides of what the scene file suggests.
+#[derive(Clone, Debug, Default)]
+pub struct StillOptions {
+    pub spp: Option<u32>,
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+    pub max_depth: Option<i32>,
+    pub rr_depth: Option<u32>,
+    pub seed: Option<u64>,
+    pub exposure: f32,
+    pub out: PathBuf,
+}
+
+/// Resolved settings plus the view.
+pub fn resolve(scene: &Scene, o: &StillOptions) -> Result<(View, RenderSettings), Failure> {
+    let camera = scene.camera.as_ref().ok_or_else(|| {
+        Failure::Input(format!(
+            "{}: the scene has no [camera]",
+            scene.source.display()
+        ))
+    })?;
+    let mut view = View::from_camera(camera);
+    if let Some(w) = o.width {
+        view.width = w;
+    }
+    if let Some(h) = o.height {
+        view.height = h;
+    }
+    let settings = RenderSettings {
+        spp: o.spp.or(scene.render.spp).unwrap_or(64),
+        path: PathSettings {
+            max_depth: o.max_depth.or(scene.render.max_depth).unwrap_or(8),
+            rr_depth: o.rr_depth.or(scene.render.rr_depth).unwrap_or(5),
+        },
+        seed: o.seed.or(scene.render.seed).unwrap_or(0),
+        frame: 0,
+    };
+    Ok((view, settings))
+}
+
+pub struct StillResult {
+    pub frame: Frame,
+    pub view: View,
+    pub settings: RenderSettings,
+    pub data: SceneData,
+    pub bvh_seconds: f64,
+    pub exr: PathBuf,
+    pub preview: PathBuf,
+}
+
+/// Renders the still and writes `raw.exr` and `preview.png` into `o.out`.
+pub fn render_still(scene: &Scene, o: &StillOptions) -> Result<StillResult, Failure> {
+    let (view, settings) = resolve(scene, o)?;
+    let t = Instant::now();
+    let data = SceneData::new(scene);
+    let bvh_seconds = t.elapsed().as_secs_f64();
+    let frame = render(&data, &view, &settings);
+    let exr = o.out.join("raw.exr");
+    let preview = o.out.join("preview.png");
+    write_exr(&exr, &frame)?;
+    write_png(&preview, &frame.rgb, frame.width, frame.height, o.exposure)?;
+    Ok(StillResult {
+        frame,
+        view,
+        settings,
+        data,
+        bvh_seconds,
+        exr,
+        preview,
+    })
+}
+
+/// `{"seconds":…, "samples":…, "samples_per_second":…, "bvh_seconds":…}`
+pub fn stats_json(r: &StillResult) -> String {
+    let s = &r.frame.stats;
+    format!(
+        "{{\"seconds\": {}, \"samples\": {}, \"samples_per_second\": {}, \"bvh_seconds\": {}, \"invalid_samples\": {}, \"triangles\": {}}}\n",
+        s.seconds,
+        s.samples,
+        s.samples as f64 / s.seconds.max(1e-9),
+        r.bvh_seconds,
+        s.invalid_samples,
+        r.data.accel.triangle_count()
+    )
+}
+
+/// Validates an output directory up front: it must be a directory or creatable.
+pub fn prepare_out_dir(dir: &Path) -> Result<(), Failure> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(Failure::Input(format!(
+            "output path {} exists and is not a directory",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Failure::io("cannot create output directory", dir, &e))
+}
