@@ -1,7 +1,7 @@
 //! Degree of adaptation D (§6.4): how completely the observer discounts the
 //! illuminant, from the surround and the adapting luminance L_A.
 //!
-//! The project default is D = 1 ("discount the illuminant"), as [GRC13] used for
+//! The project default is D = 1 ("discount the illuminant"), as \[GRC13\] used for
 //! all comparisons; these functions are for when the user asks for D to be
 //! computed. Renderer radiance has an arbitrary scale, so L_A in cd/m² needs a
 //! user-supplied `cd_per_unit` upstream of this module.
@@ -50,7 +50,7 @@ pub enum DegreeModel {
     /// CIECAM02 / CAM16 (CIE 159:2004), the default.
     #[default]
     Cie02,
-    /// The older CIECAM97s form printed as [GRC13] Eq. 2. Only for reproducing
+    /// The older CIECAM97s form printed as \[GRC13\] Eq. 2. Only for reproducing
     /// that equation; do not pair it with CAT02 otherwise.
     Cie97s,
 }
@@ -73,7 +73,7 @@ pub fn degree_of_adaptation(f: f64, l_a: f64) -> f64 {
     (f * (1.0 - (1.0 / 3.6) * ((-l_a - 42.0) / 92.0).exp())).clamp(0.0, 1.0)
 }
 
-/// CIECAM97s, [GRC13] Eq. 2: `D = F · [1 − 1/(1 + 2 L_A^{1/4} + L_A²/300)]`,
+/// CIECAM97s, \[GRC13\] Eq. 2: `D = F · [1 − 1/(1 + 2 L_A^{1/4} + L_A²/300)]`,
 /// clamped to [0, 1].
 pub fn degree_cie97s(f: f64, l_a: f64) -> f64 {
     let l_a = l_a.max(0.0);

@@ -1,7 +1,7 @@
-//! HSV read-out, for comparing with the hue/saturation figures quoted in [GRC13]
+//! HSV read-out, for comparing with the hue/saturation figures quoted in \[GRC13\]
 //! (e.g. "hue 292°, saturation 5 %", §2.1 item 8, §6.9).
 //!
-//! [GRC13] does not say where it measured; an image editor reading the 8-bit
+//! \[GRC13\] does not say where it measured; an image editor reading the 8-bit
 //! display image is by far the most likely, so the default read-out
 //! ([`hsv_of_linear`]) encodes linear RGB with the sRGB curve first. Applying
 //! [`hsv`] directly to linear values is the "linear variant" of §6.9.

@@ -46,37 +46,36 @@ pub(crate) fn gaussian_kernel(sigma: f64, order: u8) -> Vec<f64> {
     }
 }
 
-/// Correlates every row (`horizontal`) or column with `kernel`, replicating
-/// edge pixels. `src` and the result are row-major `width × height`.
-fn correlate(
-    src: &[f64],
-    width: usize,
-    height: usize,
-    kernel: &[f64],
-    horizontal: bool,
-) -> Vec<f64> {
-    let r = (kernel.len() / 2) as i64;
+/// Correlates every row with `kernel`, replicating edge pixels.
+/// `src` and the result are row-major `width × height`.
+fn correlate_rows(src: &[f64], width: usize, kernel: &[f64]) -> Vec<f64> {
+    let r = kernel.len() / 2;
     let mut dst = vec![0.0; src.len()];
-    let (len, lines) = if horizontal {
-        (width, height)
-    } else {
-        (height, width)
-    };
-    let at = |line: usize, pos: usize| {
-        if horizontal {
-            line * width + pos
-        } else {
-            pos * width + line
+    // One padded copy of the row, so the inner loop has no bounds clamping.
+    let mut padded = vec![0.0; width + 2 * r];
+    for (row, out) in src.chunks_exact(width).zip(dst.chunks_exact_mut(width)) {
+        padded[..r].fill(row[0]);
+        padded[r..r + width].copy_from_slice(row);
+        padded[r + width..].fill(row[width - 1]);
+        for (x, o) in out.iter_mut().enumerate() {
+            *o = kernel.iter().zip(&padded[x..]).map(|(k, v)| k * v).sum();
         }
-    };
-    for line in 0..lines {
-        for pos in 0..len {
-            let mut acc = 0.0;
-            for (t, k) in kernel.iter().enumerate() {
-                let q = (pos as i64 + t as i64 - r).clamp(0, len as i64 - 1) as usize;
-                acc += k * src[at(line, q)];
+    }
+    dst
+}
+
+/// Correlates every column with `kernel`, replicating edge pixels. Works a
+/// whole row at a time (tap-outer, pixel-inner) to stay cache-friendly.
+fn correlate_cols(src: &[f64], width: usize, height: usize, kernel: &[f64]) -> Vec<f64> {
+    let r = kernel.len() / 2;
+    let mut dst = vec![0.0; src.len()];
+    for (y, out) in dst.chunks_exact_mut(width).enumerate() {
+        for (t, k) in kernel.iter().enumerate() {
+            let sy = (y + t).saturating_sub(r).min(height - 1);
+            let row = &src[sy * width..(sy + 1) * width];
+            for (o, v) in out.iter_mut().zip(row) {
+                *o += k * v;
             }
-            dst[at(line, pos)] = acc;
         }
     }
     dst
@@ -92,8 +91,8 @@ pub(crate) fn gaussian_derivative(
     x_order: u8,
     y_order: u8,
 ) -> Vec<f64> {
-    let fx = correlate(img, width, height, &gaussian_kernel(sigma, x_order), true);
-    correlate(&fx, width, height, &gaussian_kernel(sigma, y_order), false)
+    let fx = correlate_rows(img, width, &gaussian_kernel(sigma, x_order));
+    correlate_cols(&fx, width, height, &gaussian_kernel(sigma, y_order))
 }
 
 /// Per-pixel magnitude of the order-n derivative (`norm_derivative.m`):

@@ -94,12 +94,25 @@ pub(crate) fn minkowski_mean(values: &[f64], mask: &[bool], p: f64) -> f64 {
     if max == 0.0 || p.is_infinite() {
         return max;
     }
+    // Integer exponents (the usual 1, 5, 6) avoid `powf`, which dominates the
+    // cost on large frames; the choice depends only on p, so it is deterministic.
+    let int_p = (p.fract() == 0.0 && p <= 64.0).then_some(p as i32);
     let (mut sum, mut n) = (0.0, 0usize);
     for v in masked() {
-        sum += (v / max).powf(p);
+        let t = v / max;
+        sum += match int_p {
+            Some(1) => t,
+            Some(k) => t.powi(k),
+            None => t.powf(p),
+        };
         n += 1;
     }
-    max * (sum / n as f64).powf(1.0 / p)
+    let mean = sum / n as f64;
+    if int_p == Some(1) {
+        max * mean
+    } else {
+        max * mean.powf(1.0 / p)
+    }
 }
 
 /// The general framework. Reads `rgb` and `emitter`.
