@@ -2,8 +2,8 @@
 //! adaptation-colour estimators the paper compares against (Gruson, Ribardière
 //! & Cozot 2013; specification in `shared/design/estimators.md`).
 //!
-//! Colours are `glam::DVec3` in scene-linear sRGB or CIE XYZ (the `spaces` functions
-//! converts, with [`D65_XYZ`] as the display white). An estimator reads a
+//! Colours are `glam::DVec3` in scene-linear sRGB or CIE XYZ ([`rgb_to_xyz`]
+//! and friends convert, with [`D65_XYZ`] as the display white). An estimator reads a
 //! frame's [`FrameAovs`] and returns an [`Estimate`] — an absolute XYZ white
 //! plus flags; [`adaptation_matrix_rgb`] turns that white into the per-frame
 //! 3×3 transform for a chosen [`Cat`] and degree of adaptation (see
