@@ -1,1 +1,33 @@
-//! placeholder
+//! Colour science for eyeadapt: colour spaces, chromatic adaptation, and the
+//! adaptation-colour estimators the paper compares against (Gruson, Ribardière
+//! & Cozot 2013; specification in `shared/design/estimators.md`).
+//!
+//! Colours are `glam::DVec3` in scene-linear sRGB or CIE XYZ ([`rgb_to_xyz`]
+//! and friends convert, with [`D65_XYZ`] as the display white). An estimator reads a
+//! frame's [`FrameAovs`] and returns an [`Estimate`] — an absolute XYZ white
+//! plus flags; [`adaptation_matrix_rgb`] turns that white into the per-frame
+//! 3×3 transform for a chosen [`Cat`] and degree of adaptation (see
+//! [`degree_of_adaptation`]). [`xyz_to_lab`], [`delta_e_2000`],
+//! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
+
+mod cat;
+mod cct;
+mod degree;
+mod estimators;
+mod hsv;
+mod lab;
+mod spaces;
+
+pub use crate::{
+    cat::{Cat, UnknownCat, adaptation_matrix_rgb, adaptation_matrix_xyz},
+    cct::{CCT_RANGE_K, cct_mccamy, cct_mccamy_xyz},
+    degree::{DegreeModel, L_A_SRGB, Surround, degree_cie97s, degree_of_adaptation},
+    estimators::*,
+    hsv::{Hsv, hsv, hsv_of_8bit, hsv_of_linear},
+    lab::{HUE_BRANCH_TOLERANCE_DEG, delta_e_2000, xyz_to_lab},
+    spaces::{
+        D65_XY, D65_XYZ, M_RGB_TO_XYZ, M_XYZ_TO_RGB, delta_uv, luminance, luminance_f32,
+        rgb_to_xyz, srgb_decode, srgb_encode, xy_to_uv, xy_to_xyz, xyz_to_rgb, xyz_to_uv,
+        xyz_to_xy,
+    },
+};
