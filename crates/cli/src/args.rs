@@ -76,6 +76,33 @@ pub struct RenderArgs {
     /// Also write render statistics as JSON to this file.
     #[arg(long)]
     pub stats_json: Option<PathBuf>,
+    #[command(flatten)]
+    pub adapt: AdaptArgs,
+}
+
+/// Estimators and chromatic adaptation.
+#[derive(Args, Debug, Clone, Default)]
+pub struct AdaptArgs {
+    /// Adaptation estimators: `all` or a comma list of eye, eye_fov, wcam, ncns, dominant,
+    /// grey_world, white_patch, shades_of_grey, grey_edge. Writes adapted_<name>.png and
+    /// adaptation.csv.
+    #[arg(long)]
+    pub estimators: Option<String>,
+    /// Chromatic adaptation transform: cat02 (default), cat16, bradford, vonkries.
+    #[arg(long)]
+    pub cat: Option<String>,
+    /// Degree of adaptation D in [0, 1] (default 1: full adaptation, as in the paper).
+    #[arg(long, conflicts_with = "adapt_luminance")]
+    pub degree: Option<f64>,
+    /// Compute D from the adapting luminance L_A in cd/m² (CIECAM02).
+    #[arg(long)]
+    pub adapt_luminance: Option<f64>,
+    /// Surround for D from L_A: average, dim or dark.
+    #[arg(long, requires = "adapt_luminance")]
+    pub surround: Option<String>,
+    /// Eye-sensor paths per frame (default 16384).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
+    pub eye_samples: Option<u32>,
 }
 
 #[derive(Args, Debug)]

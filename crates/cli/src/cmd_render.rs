@@ -41,6 +41,19 @@ pub fn run(a: RenderArgs) -> Result<(), Failure> {
     }
     println!("Saved: '{}'", r.exr.display());
     println!("Saved: '{}'", r.preview.display());
+    if let Some(list) = &a.adapt.estimators {
+        let (list, cfg, adaptation) = crate::adapt_cli::resolve(list, &a.adapt)?;
+        let readings = eyeadapt_sequencer::still::adapt_still(
+            &r,
+            &list,
+            &cfg,
+            &adaptation,
+            &a.out,
+            a.exposure,
+        )?;
+        crate::adapt_cli::print_table(&readings, &adaptation);
+        println!("Saved: '{}'", a.out.join("adaptation.csv").display());
+    }
     if let Some(p) = &a.stats_json {
         eyeadapt_sequencer::output::atomic_write_bytes(p, stats_json(&r).as_bytes())?;
     }

@@ -3,6 +3,7 @@
 //!
 //! Exit codes: 0 done; 2 bad input or usage; 75 transient failure worth a retry; 1 other.
 
+mod adapt_cli;
 mod args;
 mod cmd_bench;
 mod cmd_render;

@@ -3,6 +3,7 @@
 //!
 //! [`Failure`] classifies every error into the process exit code.
 
+pub mod adapt;
 mod error;
 pub mod output;
 pub mod still;

@@ -102,3 +102,49 @@ pub fn prepare_out_dir(dir: &Path) -> Result<(), Failure> {
     }
     std::fs::create_dir_all(dir).map_err(|e| Failure::io("cannot create output directory", dir, &e))
 }
+
+/// Runs the estimators on a rendered still, writes `adapted_<estimator>.png` and
+/// `adaptation.csv` into `out`, and returns the readings.
+pub fn adapt_still(
+    r: &StillResult,
+    list: &[&'static str],
+    cfg: &crate::adapt::EstimatorConfig,
+    adaptation: &crate::adapt::AdaptationSettings,
+    out: &Path,
+    exposure: f32,
+) -> Result<Vec<crate::adapt::Reading>, Failure> {
+    use crate::adapt::{CSV_HEADER, apply, cat_matrix, csv_row, estimate_all, white_for_cat};
+    let readings = estimate_all(
+        list,
+        cfg,
+        &r.data,
+        &r.view,
+        &r.frame,
+        0,
+        r.settings.seed,
+        r.settings.path,
+    );
+    let mut csv = String::from(CSV_HEADER);
+    csv.push('\n');
+    for reading in &readings {
+        let (white, held) = white_for_cat(&reading.estimate, eyeadapt_color::D65_XYZ);
+        let adapted = apply(cat_matrix(white, adaptation), &r.frame.rgb);
+        write_png(
+            &out.join(format!("adapted_{}.png", reading.estimator)),
+            &adapted,
+            r.frame.width,
+            r.frame.height,
+            exposure,
+        )?;
+        let mut extra = Vec::new();
+        if held {
+            extra.push("held_d65");
+        }
+        if r.frame.stats.invalid_samples > 0 {
+            extra.push("image_nan_dropped");
+        }
+        csv.push_str(&csv_row(0, 0.0, reading, &extra, r.view.position));
+    }
+    crate::output::atomic_write_bytes(&out.join("adaptation.csv"), csv.as_bytes())?;
+    Ok(readings)
+}

@@ -172,3 +172,84 @@ pub fn eye_sensor(
         invalid_samples: total.invalid,
     }
 }
+
+/// Each light's share of the sensor's direct term Φ_direct (estimators.md §4, `dominant_by =
+/// eye`): (emission or intensity colour, luminance of its direct contribution). Area lights
+/// are grouped by emission colour, like [`crate::LightSet::fluxes`]; point and spot lights are
+/// exact, area lights use `samples` stratified points per group.
+pub fn eye_direct_per_light(
+    scene: &SceneData,
+    view: &View,
+    samples: u32,
+    seed: u64,
+) -> Vec<(Vec3A, f64)> {
+    use crate::lights::luminance;
+    let eye = Vec3A::from(view.position);
+    let (_, _, axis) = view.basis();
+    let mut out: Vec<(Vec3A, f64)> = Vec::new();
+    let lights = &scene.lights;
+    let mut groups: Vec<(Vec3A, Vec<usize>, f32)> = Vec::new();
+    for (i, a) in lights.area.iter().enumerate() {
+        match groups.iter_mut().find(|g| g.0 == a.emission) {
+            Some(g) => {
+                g.1.push(i);
+                g.2 += a.area;
+            }
+            None => groups.push((a.emission, vec![i], a.area)),
+        }
+    }
+    for (gi, (emission, tris, total_area)) in groups.iter().enumerate() {
+        let key = hash_key(&[seed, 0xD0_0041, gi as u64]);
+        let mut sum = 0.0f64;
+        // Pick triangles by area with a running CDF, then a uniform point on the triangle.
+        let cdf: Vec<f32> = tris
+            .iter()
+            .scan(0.0, |acc, &t| {
+                *acc += lights.area[t].area / total_area;
+                Some(*acc)
+            })
+            .collect();
+        for i in 0..samples {
+            let mut s = SampleStream::new(key, i);
+            let u0 = s.next_1d();
+            let _ = s.next_1d();
+            let u = s.next_2d();
+            let k = cdf.partition_point(|&c| c <= u0).min(tris.len() - 1);
+            let a = &lights.area[tris[k]];
+            let su = u[0].sqrt();
+            let y = a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1]);
+            let d = y - eye;
+            let d2 = d.length_squared();
+            let wi = d / d2.sqrt();
+            let cos_l = -a.n.dot(wi);
+            let kern = (1.0 + wi.dot(axis)) * 0.25;
+            if cos_l > 0.0 && kern > 0.0 && visible(scene, eye, wi, d2.sqrt()) {
+                sum += (luminance(a.emission) * kern * cos_l / d2) as f64;
+            }
+        }
+        out.push((*emission, sum * *total_area as f64 / samples.max(1) as f64));
+    }
+    for l in &lights.deltas {
+        let d = l.position() - eye;
+        let d2 = d.length_squared();
+        let wi = d / d2.sqrt();
+        let kern = (1.0 + wi.dot(axis)) * 0.25;
+        let i = l.intensity(-wi);
+        let colour = match *l {
+            crate::lights::DeltaLight::Point { intensity, .. }
+            | crate::lights::DeltaLight::Spot { intensity, .. } => intensity,
+        };
+        let v = if kern > 0.0 && visible(scene, eye, wi, d2.sqrt()) {
+            (luminance(i) * kern / d2) as f64
+        } else {
+            0.0
+        };
+        out.push((colour, v));
+    }
+    if let Some(env) = lights.env {
+        // A constant environment's direct term is π·L scaled by its visible fraction; use the
+        // unoccluded value as an upper bound (documented: environments rarely compete here).
+        out.push((env, std::f64::consts::PI * luminance(env) as f64));
+    }
+    out
+}
