@@ -19,7 +19,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render one still: DIR/raw.exr (beauty + AOVs) and DIR/preview.png.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Benchmark the tracer on the Cornell box and print samples/s.
     Bench(BenchArgs),
     /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).

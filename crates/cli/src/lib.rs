@@ -34,7 +34,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             .map_err(|e| Failure::Other(format!("cannot start {t} threads: {e}")))?;
     }
     match cli.command {
-        Command::Render(a) => cmd_render::run(a),
+        Command::Render(a) => cmd_render::run(*a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Scenes => {
             for (name, what) in eyeadapt_scene::builtin_scenes() {

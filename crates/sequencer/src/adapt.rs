@@ -214,7 +214,7 @@ pub fn uv_std_err(mean_rgb: DVec3, cov_rgb: DMat3) -> Option<[f64; 2]> {
     let xyz = m * mean_rgb;
     let cov = m * cov_rgb * m.transpose();
     let den = xyz.x + 15.0 * xyz.y + 3.0 * xyz.z;
-    if !(den > 0.0) {
+    if den.is_nan() || den <= 0.0 {
         return None;
     }
     let d2 = den * den;
