@@ -13,6 +13,10 @@ const EMBEDDED: &[(&str, &str, &str)] = &[(
     "cornell-box",
     "the classic Cornell box: white, red and green walls, one warm quad light",
     include_str!("../../../scenes/cornell-box/scene.toml"),
+), (
+    "three-rooms",
+    "the paper's walkthrough: rooms lit white, orange, blue; glossy bench; 5 s camera path",
+    include_str!("../../../scenes/three-rooms/scene.toml"),
 )];
 
 /// Loads `builtin:NAME`.
