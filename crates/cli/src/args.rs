@@ -22,8 +22,72 @@ pub enum Command {
     Render(Box<RenderArgs>),
     /// Benchmark the tracer on the Cornell box and print samples/s.
     Bench(BenchArgs),
+    /// Render a camera-path sequence (the overnight job); with no JOB, the built-in demo.
+    Sequence(Box<SequenceArgs>),
+    /// Print the frame and chunk counts of a job (shell-evaluable, for farm submitters).
+    Plan(Box<SequenceArgs>),
+    /// Join chunk output directories into one sequence (refuses gaps and conflicts).
+    Merge(MergeArgs),
     /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).
     Scenes,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct SequenceArgs {
+    /// Job file (TOML). Without it: the built-in demo job (configs/demo.toml).
+    pub job: Option<PathBuf>,
+    /// Output directory (default: out/<job name>).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Frames to render: 0-99, 1-100:2, 1,5,7-9, 1..10 (Blender).
+    #[arg(long, conflicts_with_all = ["start", "end"])]
+    pub frames: Option<String>,
+    /// First frame (with --end, like Blender's -s/-e, Deadline's <STARTFRAME>, OpenCue's
+    /// #FRAME_START#).
+    #[arg(long, requires = "end")]
+    pub start: Option<u32>,
+    /// Last frame, inclusive; clamped to the job's last frame.
+    #[arg(long, requires = "start")]
+    pub end: Option<u32>,
+    /// Step between frames with --start/--end.
+    #[arg(long, default_value_t = 1, requires = "start")]
+    pub step: u32,
+    /// Frames per chunk (Slurm array tasks); chunk i holds frames [i*N, (i+1)*N).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub chunk_size: Option<u64>,
+    /// Which chunk to render; defaults to $SLURM_ARRAY_TASK_ID.
+    #[arg(long, requires = "chunk_size")]
+    pub chunk_index: Option<String>,
+    /// Discard an output directory's records of a different job and start over.
+    #[arg(long)]
+    pub force: bool,
+    /// On resume, re-hash committed files instead of checking their sizes.
+    #[arg(long)]
+    pub verify: bool,
+    /// Progress lines for farm managers: plain (Fra:/Saved:/Progress:) or openjd.
+    #[arg(long, default_value = "plain", value_parser = ["plain", "openjd"])]
+    pub log_format: String,
+    /// Never draw a progress bar, even on a terminal.
+    #[arg(long)]
+    pub no_progress_bar: bool,
+    /// Skip the coherence report at the end of a complete sequence.
+    #[arg(long)]
+    pub no_report: bool,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+    /// Eye-sensor paths per frame.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
+    pub eye_samples: Option<u32>,
+}
+
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// Chunk output directories.
+    #[arg(required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// Merged output directory.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// Sampling options shared by `render` and `sequence`.

@@ -7,6 +7,7 @@ mod adapt_cli;
 mod args;
 mod cmd_bench;
 mod cmd_render;
+mod cmd_sequence;
 
 use clap::Parser;
 use eyeadapt_sequencer::Failure;
@@ -36,6 +37,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Render(a) => cmd_render::run(*a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Sequence(a) => cmd_sequence::run(*a),
+        Command::Plan(a) => cmd_sequence::plan(*a),
+        Command::Merge(a) => cmd_sequence::merge(a),
         Command::Scenes => {
             for (name, what) in eyeadapt_scene::builtin_scenes() {
                 println!("builtin:{name:<28} {what}");

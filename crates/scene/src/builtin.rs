@@ -9,15 +9,18 @@ pub fn builtin_scenes() -> Vec<(&'static str, &'static str)> {
     EMBEDDED.iter().map(|(n, d, _)| (*n, *d)).collect()
 }
 
-const EMBEDDED: &[(&str, &str, &str)] = &[(
-    "cornell-box",
-    "the classic Cornell box: white, red and green walls, one warm quad light",
-    include_str!("../../../scenes/cornell-box/scene.toml"),
-), (
-    "three-rooms",
-    "the paper's walkthrough: rooms lit white, orange, blue; glossy bench; 5 s camera path",
-    include_str!("../../../scenes/three-rooms/scene.toml"),
-)];
+const EMBEDDED: &[(&str, &str, &str)] = &[
+    (
+        "cornell-box",
+        "the classic Cornell box: white, red and green walls, one warm quad light",
+        include_str!("../../../scenes/cornell-box/scene.toml"),
+    ),
+    (
+        "three-rooms",
+        "the paper's walkthrough: rooms lit white, orange, blue; glossy bench; 5 s camera path",
+        include_str!("../../../scenes/three-rooms/scene.toml"),
+    ),
+];
 
 /// Loads `builtin:NAME`.
 pub fn load_builtin(name: &str) -> Result<Scene, SceneError> {

@@ -2,7 +2,8 @@
 //!
 //! A [`Scene`] is loaded from a TOML file by [`load_scene`] (format: `docs/scene-format.md`).
 //! It owns triangle [`Mesh`]es in world space, [`Material`]s referenced by [`MaterialId`],
-//! delta [`Light`]s (point and spot), an optional constant environment and the [`Camera`].
+//! delta [`Light`]s (point and spot), an optional constant environment, the [`Camera`] and an
+//! optional [`CameraPath`] (keyframes that [`CameraPath::sample`] turns into a [`CameraPose`]).
 //! Quads, boxes and spheres are tessellated at load time; OBJ files come in through `tobj`.
 //! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
 //! reports all of them at once ([`SceneError`]). Warnings (a missing MTL, an unknown material)
@@ -14,6 +15,7 @@
 
 mod builtin;
 mod camera;
+mod camera_path;
 mod diagnostic;
 mod format;
 mod light;
@@ -26,6 +28,7 @@ mod transform;
 
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
+pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::light::Light;
 pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};

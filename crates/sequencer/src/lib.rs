@@ -5,7 +5,17 @@
 
 pub mod adapt;
 mod error;
+pub mod frames;
+pub mod job;
+pub mod manifest;
+pub mod merge;
 pub mod output;
+pub mod progress;
+pub mod sequence;
 pub mod still;
 
 pub use crate::error::Failure;
+pub use crate::frames::{
+    ChunkError, FrameSet, FrameSpecError, FrameSpecErrorKind, MAX_FRAMES, chunk, chunk_count,
+    parse_chunk_index,
+};

@@ -1,0 +1,140 @@
+//! `eyeadapt sequence`, `eyeadapt plan` and `eyeadapt merge`.
+use crate::args::{MergeArgs, SequenceArgs};
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::frames::{FrameSet, parse_chunk_index};
+use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
+use eyeadapt_sequencer::progress::LogFormat;
+use eyeadapt_sequencer::sequence::{SequenceOptions, plan_chunks, plan_frames, run_sequence};
+use std::path::PathBuf;
+
+fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
+    let s = &a.sampling;
+    load_job(
+        a.job.as_deref(),
+        &JobOverrides {
+            width: s.width,
+            height: s.height,
+            spp: s.spp,
+            max_depth: s.max_depth,
+            rr_depth: s.rr_depth,
+            seed: s.seed,
+            eye_samples: a.eye_samples,
+        },
+    )
+}
+
+fn selection(a: &SequenceArgs, job: &Job) -> Result<Option<FrameSet>, Failure> {
+    if let Some(spec) = &a.frames {
+        return spec
+            .parse::<FrameSet>()
+            .map(Some)
+            .map_err(|e| Failure::Input(format!("--frames: {e}")));
+    }
+    if let (Some(s), Some(e)) = (a.start, a.end) {
+        // Clamp the end to the job (OpenCue's last #FRAME_END# can run past it).
+        let last = job.frames.as_slice().last().copied().unwrap_or(0);
+        let e = e.min(last);
+        if a.step == 0 {
+            return Err(Failure::Input("--step must be at least 1".into()));
+        }
+        if s > e {
+            return Err(Failure::Input(format!(
+                "--start {s} is after the job's last frame {last}"
+            )));
+        }
+        return FrameSet::from_start_end_step(s, e, a.step)
+            .map(Some)
+            .map_err(|e| Failure::Input(format!("--start/--end/--step: {e}")));
+    }
+    Ok(None)
+}
+
+fn chunk_spec(a: &SequenceArgs) -> Result<Option<(usize, usize)>, Failure> {
+    let Some(size) = a.chunk_size else {
+        return Ok(None);
+    };
+    let index = match &a.chunk_index {
+        Some(i) => {
+            parse_chunk_index(i).map_err(|e| Failure::Input(format!("--chunk-index: {e}")))?
+        }
+        None => match std::env::var("SLURM_ARRAY_TASK_ID") {
+            Ok(v) => parse_chunk_index(&v)
+                .map_err(|e| Failure::Input(format!("$SLURM_ARRAY_TASK_ID: {e}")))?,
+            Err(_) => {
+                return Err(Failure::Input(
+                    "--chunk-size needs --chunk-index or $SLURM_ARRAY_TASK_ID".into(),
+                ));
+            }
+        },
+    };
+    Ok(Some((size as usize, index)))
+}
+
+pub fn run(a: SequenceArgs) -> Result<(), Failure> {
+    let job = job_of(&a)?;
+    for w in &job.scene.warnings {
+        eprintln!("{w}");
+    }
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join(&job.name));
+    let opts = SequenceOptions {
+        out: out.clone(),
+        selection: selection(&a, &job)?,
+        chunk: chunk_spec(&a)?,
+        force: a.force,
+        verify: a.verify,
+        log_format: if a.log_format == "openjd" {
+            LogFormat::Openjd
+        } else {
+            LogFormat::Plain
+        },
+        plain_progress: a.no_progress_bar,
+    };
+    let s = run_sequence(&job, &opts)?;
+    let fph = if s.rendered > 0 {
+        s.rendered as f64 / s.seconds * 3600.0
+    } else {
+        0.0
+    };
+    println!(
+        "{}: {} frame(s) rendered, {} already done, in {:.1} s ({:.0} frames/hour) -> {}",
+        job.name,
+        s.rendered,
+        s.skipped,
+        s.seconds,
+        fph,
+        out.display()
+    );
+    Ok(())
+}
+
+pub fn plan(a: SequenceArgs) -> Result<(), Failure> {
+    let job = job_of(&a)?;
+    let (_, all) = plan_frames(&job, selection(&a, &job)?.as_ref(), None)?;
+    let chunks = match a.chunk_size {
+        Some(n) => plan_chunks(all.len(), n as usize)?,
+        None => 1,
+    };
+    println!("EYEADAPT_JOB_NAME={}", job.name);
+    println!("EYEADAPT_FRAMES={}", all.len());
+    println!("EYEADAPT_CHUNKS={chunks}");
+    println!("EYEADAPT_FIRST={}", all[0]);
+    println!("EYEADAPT_LAST={}", all[all.len() - 1]);
+    println!("EYEADAPT_JOB_HASH={}", job.hash);
+    Ok(())
+}
+
+pub fn merge(a: MergeArgs) -> Result<(), Failure> {
+    let s = eyeadapt_sequencer::merge::merge(&a.dirs, &a.out)?;
+    println!(
+        "merged {} frame(s) from {} director{} ({} identical duplicate(s)) into {}",
+        s.frames,
+        s.sources,
+        if s.sources == 1 { "y" } else { "ies" },
+        s.duplicates,
+        a.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,140 @@
+//! `manifest.json`: the job's hash and every committed frame with its files' sizes and
+//! checksums. It is the single source of truth for resume and merge, and it is rewritten
+//! atomically after each frame. It holds no timestamps or timings, so an interrupted and
+//! resumed run produces the same manifest bytes as an uninterrupted one.
+use crate::error::Failure;
+use crate::output::atomic_write_bytes;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub const MANIFEST: &str = "manifest.json";
+pub const CSV: &str = "adaptation.csv";
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FileEntry {
+    /// Path relative to the output directory.
+    pub path: String,
+    pub bytes: u64,
+    /// First 128 bits of SHA-256, hex.
+    pub sha256_128: String,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FrameEntry {
+    pub time_s: f64,
+    pub files: Vec<FileEntry>,
+    /// Samples dropped as NaN/Inf in the image.
+    pub invalid_samples: u64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub format: u32,
+    pub tool: String,
+    pub job_name: String,
+    pub job_source: String,
+    pub job_hash: String,
+    /// Frames this directory is meant to hold (the selection or chunk), as a frame spec.
+    pub planned: String,
+    /// Every frame of the job's selection (for merge's gap check), as a frame spec.
+    pub job_frames: String,
+    pub estimators: Vec<String>,
+    pub fps: f64,
+    /// The resolved job settings (resolution, spp, depths, seed, CAT, D, eye samples,
+    /// temporal filters…) as text, for reports.
+    pub settings: BTreeMap<String, String>,
+    pub frames: BTreeMap<u32, FrameEntry>,
+}
+
+pub fn checksum(bytes: &[u8]) -> String {
+    crate::job::hex(&Sha256::digest(bytes)[..16])
+}
+
+pub fn file_entry(dir: &Path, rel: &str) -> Result<FileEntry, Failure> {
+    let p = dir.join(rel);
+    let bytes = std::fs::read(&p).map_err(|e| Failure::io("cannot read back", &p, &e))?;
+    Ok(FileEntry {
+        path: rel.to_string(),
+        bytes: bytes.len() as u64,
+        sha256_128: checksum(&bytes),
+    })
+}
+
+impl Manifest {
+    pub fn load(dir: &Path) -> Result<Option<Manifest>, Failure> {
+        let p = dir.join(MANIFEST);
+        match std::fs::read(&p) {
+            Ok(b) => serde_json::from_slice(&b).map(Some).map_err(|e| {
+                Failure::Input(format!(
+                    "{}: not a valid eyeadapt manifest: {e}",
+                    p.display()
+                ))
+            }),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+            Err(e) => Err(Failure::io("cannot read", &p, &e)),
+        }
+    }
+
+    pub fn save(&self, dir: &Path) -> Result<(), Failure> {
+        let mut text = serde_json::to_string_pretty(self)
+            .map_err(|e| Failure::Other(format!("cannot encode manifest: {e}")))?;
+        text.push('\n');
+        atomic_write_bytes(&dir.join(MANIFEST), text.as_bytes())
+    }
+
+    /// True when the frame's files exist with the recorded sizes (and, with `verify`, the
+    /// recorded checksums).
+    pub fn frame_intact(&self, dir: &Path, f: u32, verify: bool) -> bool {
+        let Some(e) = self.frames.get(&f) else {
+            return false;
+        };
+        e.files.iter().all(|fe| {
+            let p = dir.join(&fe.path);
+            if verify {
+                std::fs::read(&p)
+                    .is_ok_and(|b| b.len() as u64 == fe.bytes && checksum(&b) == fe.sha256_128)
+            } else {
+                std::fs::metadata(&p).is_ok_and(|m| m.len() == fe.bytes)
+            }
+        })
+    }
+}
+
+/// Compact frame spec of a sorted list (`0-9,12,14-20`).
+pub fn frames_to_spec(frames: &[u32]) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < frames.len() {
+        let start = frames[i];
+        let mut j = i;
+        while j + 1 < frames.len() && frames[j + 1] == frames[j] + 1 {
+            j += 1;
+        }
+        out.push(if j == i {
+            format!("{start}")
+        } else {
+            format!("{start}-{}", frames[j])
+        });
+        i = j + 1;
+    }
+    out.join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spec_round_trips() {
+        let f = [0, 1, 2, 5, 7, 8, 9, 20];
+        let s = frames_to_spec(&f);
+        assert_eq!(s, "0-2,5,7-9,20");
+        assert_eq!(s.parse::<crate::frames::FrameSet>().unwrap().as_slice(), &f);
+        assert_eq!(frames_to_spec(&[]), "");
+    }
+}

@@ -1,0 +1,400 @@
+//! `eyeadapt sequence`: render a camera path frame by frame, resumable and farm-friendly.
+//!
+//! Per frame, in this order: render; run every estimator; write the raw EXR/PNG and the
+//! adapted images (each to a temporary name, then renamed); write the frame's CSV rows to
+//! `rows/frame_NNNNNN.csv`; append the same rows to `adaptation.csv` in one `write` call (a
+//! SIGKILL cannot split a single write to a regular file); then atomically rewrite
+//! `manifest.json` with the frame's files and checksums. Only then is the frame committed.
+//!
+//! On start, frames in the manifest whose files are intact are skipped, and `adaptation.csv`
+//! is rebuilt from the committed frames' row files if it holds anything else (rows of the
+//! frame that was in flight when a run was killed). A job whose hash differs from the
+//! directory's manifest is refused unless `--force`.
+use crate::adapt::{CSV_HEADER, Reading, apply, cat_matrix, csv_row, estimate_all, white_for_cat};
+use crate::error::Failure;
+use crate::frames::{FrameSet, chunk, chunk_count};
+use crate::job::Job;
+use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry, frames_to_spec};
+use crate::output::{atomic_write_bytes, write_exr, write_png};
+use crate::progress::{LogFormat, Progress};
+use eyeadapt_tracer::{Frame, RenderSettings, SceneData, render};
+use std::fs::OpenOptions;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Clone, Debug)]
+pub struct SequenceOptions {
+    pub out: PathBuf,
+    /// `--frames` / `--start --end --step`: narrows the job's frames.
+    pub selection: Option<FrameSet>,
+    /// `--chunk-size N --chunk-index I`.
+    pub chunk: Option<(usize, usize)>,
+    pub force: bool,
+    /// Re-hash committed files on resume instead of checking sizes only.
+    pub verify: bool,
+    pub log_format: LogFormat,
+    pub plain_progress: bool,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct SequenceSummary {
+    pub planned: usize,
+    pub rendered: usize,
+    pub skipped: usize,
+    pub seconds: f64,
+    pub render_seconds: f64,
+    /// Every frame of the job's selection is committed in this directory.
+    pub complete: bool,
+}
+
+/// (frames this run is responsible for, the job's whole selection).
+pub fn plan_frames(
+    job: &Job,
+    selection: Option<&FrameSet>,
+    chunk_spec: Option<(usize, usize)>,
+) -> Result<(Vec<u32>, Vec<u32>), Failure> {
+    let all = match selection {
+        Some(sel) => {
+            let outside: Vec<u32> = sel
+                .as_slice()
+                .iter()
+                .copied()
+                .filter(|f| !job.frames.contains(*f))
+                .collect();
+            if !outside.is_empty() {
+                return Err(Failure::Input(format!(
+                    "--frames selects {} frame(s) outside the job's frames {} (first: {})",
+                    outside.len(),
+                    frames_to_spec(job.frames.as_slice()),
+                    outside[0]
+                )));
+            }
+            job.frames.intersect(sel)
+        }
+        None => job.frames.clone(),
+    };
+    if all.is_empty() {
+        return Err(Failure::Input("the frame selection is empty".into()));
+    }
+    let planned = match chunk_spec {
+        Some((size, index)) => chunk(all.as_slice(), size, index)
+            .map_err(|e| Failure::Input(e.to_string()))?
+            .to_vec(),
+        None => all.as_slice().to_vec(),
+    };
+    Ok((planned, all.into_vec()))
+}
+
+/// Number of chunks of `size` for the selection (for `eyeadapt plan`).
+pub fn plan_chunks(frames: usize, size: usize) -> Result<usize, Failure> {
+    chunk_count(frames, size).map_err(|e| Failure::Input(e.to_string()))
+}
+
+pub fn frame_name(f: u32, ext: &str) -> String {
+    format!("frame_{f:06}.{ext}")
+}
+
+/// Holds an exclusive lock on the output directory for the life of the run.
+pub struct DirLock {
+    _file: std::fs::File,
+}
+
+pub fn lock_dir(dir: &Path) -> Result<DirLock, Failure> {
+    let p = dir.join(".eyeadapt.lock");
+    let file = OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&p)
+        .map_err(|e| Failure::io("cannot create lock file", &p, &e))?;
+    match file.try_lock() {
+        Ok(()) => Ok(DirLock { _file: file }),
+        Err(std::fs::TryLockError::WouldBlock) => Err(Failure::Transient(format!(
+            "another eyeadapt process is writing to {}",
+            dir.display()
+        ))),
+        Err(std::fs::TryLockError::Error(e)) => Err(Failure::io("cannot lock", &p, &e)),
+    }
+}
+
+/// The full CSV text of a directory's committed frames, in frame order.
+pub fn csv_from_rows(dir: &Path, m: &Manifest) -> Result<String, Failure> {
+    let mut csv = String::from(CSV_HEADER);
+    csv.push('\n');
+    for f in m.frames.keys() {
+        let p = dir.join("rows").join(frame_name(*f, "csv"));
+        let rows = std::fs::read_to_string(&p)
+            .map_err(|e| Failure::io("cannot read committed rows", &p, &e))?;
+        csv.push_str(&rows);
+    }
+    Ok(csv)
+}
+
+/// Rewrites adaptation.csv from the row files unless it already holds exactly that.
+pub fn sync_csv(dir: &Path, m: &Manifest) -> Result<bool, Failure> {
+    let want = csv_from_rows(dir, m)?;
+    let p = dir.join(CSV);
+    if std::fs::read(&p).is_ok_and(|have| have == want.as_bytes()) {
+        return Ok(false);
+    }
+    atomic_write_bytes(&p, want.as_bytes())?;
+    Ok(true)
+}
+
+fn new_manifest(job: &Job, planned: &[u32], all: &[u32]) -> Manifest {
+    Manifest {
+        format: 1,
+        tool: format!("eyeadapt {}", env!("CARGO_PKG_VERSION")),
+        job_name: job.name.clone(),
+        job_source: job.source.clone(),
+        job_hash: job.hash.clone(),
+        planned: frames_to_spec(planned),
+        job_frames: frames_to_spec(all),
+        estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
+        fps: job.path.fps,
+        settings: job_settings(job),
+        frames: Default::default(),
+    }
+}
+
+/// The job's resolved settings as text, recorded in the manifest for reports.
+pub fn job_settings(job: &Job) -> std::collections::BTreeMap<String, String> {
+    let mut s = std::collections::BTreeMap::new();
+    let mut put = |k: &str, v: String| {
+        s.insert(k.to_string(), v);
+    };
+    put("resolution", format!("{}x{}", job.width, job.height));
+    put("spp", job.spp.to_string());
+    put("max_depth", job.path_settings.max_depth.to_string());
+    put("rr_depth", job.path_settings.rr_depth.to_string());
+    put("seed", job.seed.to_string());
+    put("fps", job.path.fps.to_string());
+    put("cat", job.adaptation.cat.to_string());
+    put("degree", job.adaptation.degree.to_string());
+    put("eye_samples", job.estimator_config.eye.samples.to_string());
+    put(
+        "eye_common_random_numbers",
+        job.estimator_config.eye.common_random_numbers.to_string(),
+    );
+    put("wcam_w", job.estimator_config.wcam.w.to_string());
+    put("temporal_filters", job.temporal.filters.join(","));
+    put("exposure", job.exposure.to_string());
+    put("scene", job.scene.source.display().to_string());
+    s
+}
+
+/// Renders the planned frames of `job` into `o.out`.
+pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, Failure> {
+    let start = Instant::now();
+    let (planned, all) = plan_frames(job, o.selection.as_ref(), o.chunk)?;
+    crate::still::prepare_out_dir(&o.out)?;
+    let _lock = lock_dir(&o.out)?;
+    let mut m = match Manifest::load(&o.out)? {
+        Some(m) if m.job_hash == job.hash => Manifest {
+            planned: frames_to_spec(&planned),
+            job_frames: frames_to_spec(&all),
+            ..m
+        },
+        Some(m) if !o.force => {
+            return Err(Failure::Input(format!(
+                "{} holds frames of job \"{}\" ({}, hash {}…) but this job hashes to {}…: refusing to mix outputs. \
+                 Use another --out, or --force to discard the old frames' records and start over",
+                o.out.display(),
+                m.job_name,
+                m.job_source,
+                &m.job_hash[..12],
+                &job.hash[..12]
+            )));
+        }
+        _ => new_manifest(job, &planned, &all),
+    };
+    // Forget frames whose files are gone or damaged; they will be rendered again.
+    let damaged: Vec<u32> = m
+        .frames
+        .keys()
+        .copied()
+        .filter(|f| !m.frame_intact(&o.out, *f, o.verify))
+        .collect();
+    for f in &damaged {
+        m.frames.remove(f);
+    }
+    m.save(&o.out)?;
+    sync_csv(&o.out, &m)?;
+
+    let todo: Vec<u32> = planned
+        .iter()
+        .copied()
+        .filter(|f| !m.frames.contains_key(f))
+        .collect();
+    let mut summary = SequenceSummary {
+        planned: planned.len(),
+        skipped: planned.len() - todo.len(),
+        ..Default::default()
+    };
+    let mut progress = Progress::new(todo.len(), o.log_format, o.plain_progress);
+    if !damaged.is_empty() {
+        progress.note(&format!(
+            "re-rendering {} frame(s) whose files were missing or damaged: {}",
+            damaged.len(),
+            frames_to_spec(&damaged)
+        ));
+    }
+    if summary.skipped > 0 {
+        progress.note(&format!(
+            "resuming: {} of {} frame(s) already complete",
+            summary.skipped,
+            planned.len()
+        ));
+    }
+    if !todo.is_empty() {
+        let data = SceneData::new(&job.scene);
+        for (i, &f) in todo.iter().enumerate() {
+            progress.frame_started(f, i);
+            let t = Instant::now();
+            let (entry, readings, frame) = render_frame(job, &data, f, &o.out, &progress)?;
+            let rows = std::fs::read(o.out.join("rows").join(frame_name(f, "csv")))
+                .map_err(|e| Failure::io("cannot read back rows", &o.out, &e))?;
+            append(&o.out.join(CSV), &rows)?;
+            m.frames.insert(f, entry);
+            m.save(&o.out)?;
+            summary.rendered += 1;
+            summary.render_seconds += frame.stats.seconds;
+            let eye = readings
+                .iter()
+                .find(|r| r.estimator == "eye")
+                .and_then(|r| r.estimate.uv());
+            let msg = eye.map_or(String::new(), |uv| {
+                format!("eye u'v' = ({:.4}, {:.4})", uv.x, uv.y)
+            });
+            progress.frame_done(
+                f,
+                t.elapsed().as_secs_f64(),
+                frame.stats.samples as f64 / frame.stats.seconds.max(1e-9),
+                &msg,
+            );
+        }
+    }
+    progress.finish();
+    // Rows appended in a resumed run may follow frames committed later by another order:
+    // leave the CSV sorted by frame.
+    sync_csv(&o.out, &m)?;
+    summary.complete = all.iter().all(|f| m.frames.contains_key(f));
+    summary.seconds = start.elapsed().as_secs_f64();
+    Ok(summary)
+}
+
+fn append(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    let mut f = OpenOptions::new()
+        .append(true)
+        .open(path)
+        .map_err(|e| Failure::io("cannot open for append", path, &e))?;
+    // One write call for all of the frame's rows: a kill cannot split it.
+    f.write_all(bytes)
+        .map_err(|e| Failure::io("cannot append to", path, &e))?;
+    f.sync_data()
+        .map_err(|e| Failure::io("cannot sync", path, &e))
+}
+
+/// Renders and writes one frame; returns its manifest entry.
+fn render_frame(
+    job: &Job,
+    data: &SceneData,
+    f: u32,
+    out: &Path,
+    progress: &Progress,
+) -> Result<(FrameEntry, Vec<Reading>, Frame), Failure> {
+    let view = job.view(f);
+    let settings = RenderSettings {
+        spp: job.spp,
+        path: job.path_settings,
+        seed: job.seed,
+        frame: f,
+    };
+    let frame = render(data, &view, &settings);
+    let readings = estimate_all(
+        &job.estimators,
+        &job.estimator_config,
+        data,
+        &view,
+        &frame,
+        f,
+        job.seed,
+        job.path_settings,
+    );
+    let mut files: Vec<String> = Vec::new();
+    let save = |rel: String, files: &mut Vec<String>| {
+        progress.saved(&out.join(&rel));
+        files.push(rel);
+    };
+    if job.outputs.raw_exr {
+        let rel = format!("frames/raw/{}", frame_name(f, "exr"));
+        write_exr(&out.join(&rel), &frame)?;
+        save(rel, &mut files);
+    }
+    if job.outputs.raw_png {
+        let rel = format!("frames/raw/{}", frame_name(f, "png"));
+        write_png(
+            &out.join(&rel),
+            &frame.rgb,
+            frame.width,
+            frame.height,
+            job.exposure,
+        )?;
+        save(rel, &mut files);
+    }
+    let time = job.time(f);
+    let mut rows = String::new();
+    for r in &readings {
+        // Undefined whites adapt with D65 (never the previous frame's white), so that every
+        // frame's output depends on that frame alone and chunked runs match whole runs.
+        let (white, held) = white_for_cat(&r.estimate, eyeadapt_color::D65_XYZ);
+        let mut extra: Vec<&str> = Vec::new();
+        if held {
+            extra.push("held_d65");
+        }
+        if frame.stats.invalid_samples > 0 {
+            extra.push("image_nan_dropped");
+        }
+        rows.push_str(&csv_row(f, time, r, &extra, view.position));
+        if job.outputs.adapted_png || job.outputs.adapted_exr {
+            let adapted = apply(cat_matrix(white, &job.adaptation), &frame.rgb);
+            if job.outputs.adapted_png {
+                let rel = format!("frames/{}/{}", r.estimator, frame_name(f, "png"));
+                write_png(
+                    &out.join(&rel),
+                    &adapted,
+                    frame.width,
+                    frame.height,
+                    job.exposure,
+                )?;
+                save(rel, &mut files);
+            }
+            if job.outputs.adapted_exr {
+                let rel = format!("frames/{}/{}", r.estimator, frame_name(f, "exr"));
+                let af = Frame {
+                    rgb: adapted,
+                    ..frame.clone()
+                };
+                write_exr(&out.join(&rel), &af)?;
+                save(rel, &mut files);
+            }
+        }
+    }
+    let rel = format!("rows/{}", frame_name(f, "csv"));
+    atomic_write_bytes(&out.join(&rel), rows.as_bytes())?;
+    files.push(rel);
+    let entries: Vec<FileEntry> = files
+        .iter()
+        .map(|r| file_entry(out, r))
+        .collect::<Result<_, _>>()?;
+    Ok((
+        FrameEntry {
+            time_s: time,
+            files: entries,
+            invalid_samples: frame.stats.invalid_samples,
+        },
+        readings,
+        frame,
+    ))
+}
