@@ -1,0 +1,291 @@
+//! Bad input: every case exits with code 2 and a message naming the file and the line
+//! (`file:line:col:`), and nothing is written.
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn eyeadapt() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+}
+
+const GOOD: &str = r#"
+[camera]
+position = [0.0, 1.0, 3.0]
+look_at = [0.0, 1.0, 0.0]
+fov_deg = 45.0
+width = 16
+height = 12
+
+[[materials]]
+name = "white"
+type = "diffuse"
+reflectance = [0.7, 0.7, 0.7]
+
+[[shapes]]
+type = "sphere"
+material = "white"
+center = [0.0, 1.0, 0.0]
+radius = 0.5
+
+[environment]
+radiance = [1.0, 1.0, 1.0]
+"#;
+
+/// Writes `text` as scene.toml in a fresh directory and renders it; returns (code, stderr, dir).
+fn render_scene(text: &str, extra: &[(&str, &[u8])]) -> (i32, String, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, text).unwrap();
+    for (name, bytes) in extra {
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    }
+    let out = dir.path().join("out");
+    let o = eyeadapt()
+        .args([
+            "render",
+            scene.to_str().unwrap(),
+            "--spp",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+        dir,
+    )
+}
+
+/// Asserts exit 2, a `scene.toml:LINE:` location (when `line` is given) and a message part.
+fn assert_bad(text: &str, line: Option<usize>, needle: &str) {
+    assert_bad_with(text, &[], line, needle);
+}
+
+fn assert_bad_with(text: &str, extra: &[(&str, &[u8])], line: Option<usize>, needle: &str) {
+    let (code, err, dir) = render_scene(text, extra);
+    assert_eq!(code, 2, "exit code for {needle:?}; stderr:\n{err}");
+    assert!(
+        err.contains("scene.toml"),
+        "message must name the file:\n{err}"
+    );
+    if let Some(l) = line {
+        assert!(
+            err.contains(&format!("scene.toml:{l}:")),
+            "expected line {l}:\n{err}"
+        );
+    }
+    assert!(
+        err.to_lowercase().contains(&needle.to_lowercase()),
+        "expected {needle:?} in:\n{err}"
+    );
+    assert!(
+        !dir.path().join("out").join("raw.exr").exists(),
+        "no output on bad input"
+    );
+}
+
+fn line_of(text: &str, pat: &str) -> usize {
+    text.lines().position(|l| l.contains(pat)).expect(pat) + 1
+}
+
+#[test]
+fn good_scene_renders() {
+    let (code, err, dir) = render_scene(GOOD, &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("out/raw.exr").exists());
+}
+
+#[test]
+fn bad_toml_syntax() {
+    let t = GOOD.replace("fov_deg = 45.0", "fov_deg = = 45.0");
+    assert_bad(&t, Some(line_of(&t, "fov_deg")), "");
+}
+
+#[test]
+fn unknown_field() {
+    let t = GOOD.replace("fov_deg = 45.0", "fov_deg = 45.0\nfocal = 3.0");
+    assert_bad(&t, Some(line_of(&t, "focal")), "unknown field `focal`");
+}
+
+#[test]
+fn wrong_type() {
+    let t = GOOD.replace("fov_deg = 45.0", "fov_deg = \"wide\"");
+    assert_bad(&t, Some(line_of(&t, "fov_deg")), "invalid type");
+}
+
+#[test]
+fn missing_scene_file() {
+    let o = eyeadapt()
+        .args(["render", "/nonexistent/dir/scene.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/dir/scene.toml"));
+}
+
+#[test]
+fn negative_spp_in_file_and_on_the_command_line() {
+    let t = GOOD.replace("[environment]", "[render]\nspp = -3\n\n[environment]");
+    assert_bad(&t, Some(line_of(&t, "spp = -3")), "spp -3");
+    let o = eyeadapt()
+        .args(["render", "builtin:cornell-box", "--spp", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--spp"));
+}
+
+#[test]
+fn zero_size_image() {
+    let t = GOOD.replace("width = 16", "width = 0");
+    assert_bad(&t, Some(line_of(&t, "width = 0")), "width 0");
+}
+
+#[test]
+fn degenerate_camera() {
+    let t = GOOD.replace("look_at = [0.0, 1.0, 0.0]", "look_at = [0.0, 1.0, 3.0]");
+    assert_bad(
+        &t,
+        Some(line_of(&t, "look_at")),
+        "look_at equals its position",
+    );
+    let t = GOOD.replace("look_at = [0.0, 1.0, 0.0]", "look_at = [0.0, 5.0, 3.0]");
+    assert_bad(&t, Some(line_of(&t, "look_at")), "parallel");
+}
+
+#[test]
+fn nan_and_negative_colours() {
+    let t = GOOD.replace(
+        "reflectance = [0.7, 0.7, 0.7]",
+        "reflectance = [nan, 0.7, 0.7]",
+    );
+    assert_bad(&t, Some(line_of(&t, "reflectance")), "non-finite");
+    let t = GOOD.replace("radiance = [1.0, 1.0, 1.0]", "radiance = [1.0, -1.0, inf]");
+    assert_bad(&t, Some(line_of(&t, "radiance")), "environment radiance");
+    let t = GOOD.replace(
+        "reflectance = [0.7, 0.7, 0.7]",
+        "reflectance = [0.7, 1.7, 0.7]",
+    );
+    assert_bad(&t, Some(line_of(&t, "reflectance")), "exceeds 1");
+}
+
+#[test]
+fn empty_scene() {
+    let t = GOOD.split("[[materials]]").next().unwrap().to_string();
+    assert_bad(&t, None, "empty");
+}
+
+#[test]
+fn missing_and_unreadable_obj() {
+    let t = GOOD.replace(
+        "type = \"sphere\"\nmaterial = \"white\"\ncenter = [0.0, 1.0, 0.0]\nradius = 0.5",
+        "type = \"obj\"\nfile = \"mesh.obj\"",
+    );
+    assert_bad(&t, Some(line_of(&t, "mesh.obj")), "does not exist");
+    // A file that is not an OBJ at all: no triangles.
+    assert_bad_with(
+        &t,
+        &[("mesh.obj", b"\x00\x01\x02garbage\xff\xfe\n")],
+        Some(line_of(&t, "mesh.obj")),
+        "mesh.obj",
+    );
+    // Faces indexing vertices that do not exist.
+    assert_bad_with(
+        &t,
+        &[("mesh.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 9\n")],
+        Some(line_of(&t, "mesh.obj")),
+        "mesh.obj",
+    );
+}
+
+#[test]
+fn every_problem_is_reported_at_once() {
+    let t = GOOD
+        .replace("fov_deg = 45.0", "fov_deg = 400.0")
+        .replace("width = 16", "width = 0")
+        .replace("type = \"diffuse\"", "type = \"velvet\"");
+    let (code, err, _d) = render_scene(&t, &[]);
+    assert_eq!(code, 2);
+    for needle in ["fov_deg 400", "width 0", "velvet"] {
+        assert!(err.contains(needle), "{needle} missing from:\n{err}");
+    }
+}
+
+#[test]
+fn unknown_material_is_a_warning_and_renders_magenta() {
+    let t = GOOD.replace("material = \"white\"", "material = \"whiet\"");
+    let (code, err, dir) = render_scene(&t, &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning") && err.contains("whiet") && err.contains("scene.toml:"),
+        "{err}"
+    );
+    assert!(dir.path().join("out/raw.exr").exists());
+}
+
+#[test]
+fn missing_mtl_is_a_warning_naming_the_file() {
+    let t = GOOD.replace(
+        "type = \"sphere\"\nmaterial = \"white\"\ncenter = [0.0, 1.0, 0.0]\nradius = 0.5",
+        "type = \"obj\"\nfile = \"mesh.obj\"",
+    );
+    let obj = b"mtllib nothere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n";
+    let (code, err, _d) = render_scene(&t, &[("mesh.obj", obj)]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("mesh.obj") && err.contains("error material"),
+        "{err}"
+    );
+}
+
+fn job_dir() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().to_path_buf();
+    (dir, p)
+}
+
+#[test]
+fn bad_job_files_exit_2_with_location() {
+    let (_d, dir) = job_dir();
+    let cases: [(&str, &str); 5] = [
+        (
+            "scene = \"builtin:three-rooms\"\nbogus = 1\n",
+            "unknown field `bogus`",
+        ),
+        (
+            "scene = \"builtin:three-rooms\"\n[render]\nspp = 0\n",
+            "render.spp 0",
+        ),
+        ("scene = \"builtin:nope\"\n", "no built-in scene"),
+        (
+            "scene = \"builtin:three-rooms\"\n[estimators]\nlist = [\"eye\", \"psychic\"]\n",
+            "psychic",
+        ),
+        (
+            "scene = \"builtin:three-rooms\"\nframes = \"5-x\"\n",
+            "invalid number",
+        ),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let job = dir.join(format!("job{i}.toml"));
+        std::fs::write(&job, text).unwrap();
+        let o = eyeadapt()
+            .args([
+                "sequence",
+                job.to_str().unwrap(),
+                "--out",
+                dir.join("out").to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+        assert!(
+            err.contains(&format!("job{i}.toml:")),
+            "{text}: must name file and line: {err}"
+        );
+        assert!(err.contains(needle), "{text}: expected {needle}: {err}");
+        assert!(!Path::new(&dir.join("out/manifest.json")).exists());
+    }
+}
