@@ -50,6 +50,16 @@ Options:
   --max-parallel N     run at most N tasks at once (--array=0-(K-1)%N)
   --extra-sbatch ARGS  more sbatch options for both jobs, split on white space
                        (e.g. "--account=vis --qos=low"); may be repeated
+  --max-retries N      requeues allowed per task after exit 75 (default 3); the
+                       next exit 75 is turned into exit 1, a permanent failure.
+                       Slurm 22.05 itself requeues on RequeueExit without limit.
+  --no-kill-on-invalid-dep
+                       submit the merge with --kill-on-invalid-dep=no instead of
+                       =yes (for sites that ask users not to use the flag); if
+                       a task fails the merge then pends in
+                       DependencyNeverSatisfied until --wait (or you) scancel it.
+                       (--extra-sbatch cannot do this: when sbatch 22.05 gets
+                       both =yes and =no, =yes wins whatever the order.)
   --wait               block until both jobs ended; exit 0 only if every task
                        and the merge are COMPLETED
   --timeout SECONDS    limit for --wait (default 3600); jobs keep running after it
@@ -76,7 +86,7 @@ positive_int() { [[ $2 =~ ^[1-9][0-9]*$ ]] || usage_error "$1 must be a positive
 # --- arguments --------------------------------------------------------------
 
 JOB="" DEMO=0 FRAMES="" CHUNK_SIZE=10 OUT="" EXE="" THREADS=1 PARTITION="" TIME_LIMIT=""
-NAME="" MAX_PARALLEL="" WAIT=0 TIMEOUT=3600 DRY_RUN=0
+NAME="" MAX_PARALLEL="" WAIT=0 TIMEOUT=3600 DRY_RUN=0 KILL_INVALID_DEP=yes MAX_RETRIES=3
 RENDER_OPTS=() EXTRA_SBATCH=() WORKER_ARGS=()
 
 parse_args() {
@@ -101,6 +111,8 @@ parse_args() {
         read -r -a words <<<"$2"
         EXTRA_SBATCH+=("${words[@]}")
         shift 2 ;;
+      --max-retries) need_value "$1" $#; [[ $2 =~ ^[0-9]+$ ]] || usage_error "--max-retries must be a number"; MAX_RETRIES=$2; shift 2 ;;
+      --no-kill-on-invalid-dep) KILL_INVALID_DEP=no; shift ;;
       --wait) WAIT=1; shift ;;
       --timeout) need_value "$1" $#; positive_int "$1" "$2"; TIMEOUT=$2; shift 2 ;;
       --dry-run) DRY_RUN=1; shift ;;
@@ -208,6 +220,12 @@ echo "eyeadapt-slurm: chunk \$task of array job \${SLURM_ARRAY_JOB_ID:-?}, attem
 mkdir -p "\$out/chunks"
 "\$exe" "\${head[@]}" --chunk-size $CHUNK_SIZE --chunk-index "\$task" --out "\$out/chunks/\$task" "\${tail[@]}"
 rc=\$?
+restarts=\${SLURM_RESTART_COUNT:-0}
+if ((rc == 75 && restarts >= $MAX_RETRIES)); then
+  # Slurm would requeue on every exit 75 forever (retry limit here: $MAX_RETRIES).
+  echo "eyeadapt-slurm: chunk \$task exit 75 again after \$restarts retries (limit $MAX_RETRIES); failing for good" >&2
+  rc=1
+fi
 case \$rc in
   0) what="done" ;;
   75) what="transient failure, asking Slurm for a retry (needs RequeueExit=75)" ;;
@@ -283,7 +301,7 @@ submit() {
     quoted "${RENDER_CMD[@]}"
     echo
     quoted sbatch "${COMMON[@]}" --job-name "$NAME-merge" --dependency "afterok:<A>_0:...:<A>_$((CHUNKS - 1))" \
-      --kill-on-invalid-dep=yes --open-mode=append --output "$OUT/logs/merge_%j.log" "${EXTRA_SBATCH[@]}" "$MERGE_SCRIPT"
+      "--kill-on-invalid-dep=$KILL_INVALID_DEP" --open-mode=append --output "$OUT/logs/merge_%j.log" "${EXTRA_SBATCH[@]}" "$MERGE_SCRIPT"
     echo
     exit 0
   fi
@@ -294,7 +312,7 @@ submit() {
   # Per-task afterok: see the comment at the top of this file.
   for ((i = 0; i < CHUNKS; i++)); do dep+=":${ARRAY_JOB}_$i"; done
   MERGE_CMD=(sbatch "${COMMON[@]}" --job-name "$NAME-merge" --dependency "$dep"
-    --kill-on-invalid-dep=yes --open-mode=append --output "$OUT/logs/merge_%j.log"
+    "--kill-on-invalid-dep=$KILL_INVALID_DEP" --open-mode=append --output "$OUT/logs/merge_%j.log"
     "${EXTRA_SBATCH[@]}" "$MERGE_SCRIPT")
   if ! out=$("${MERGE_CMD[@]}") || ! MERGE_JOB=$(job_id "$out"); then
     log "error: sbatch of the merge job failed; cancelling render array $ARRAY_JOB"
