@@ -259,10 +259,16 @@ tmp=\$out/merged.tmp.\${SLURM_JOB_ID:-\$\$}
 rm -rf "\$tmp"
 echo "eyeadapt-slurm: merging \$chunks chunks at \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
 "\$exe" merge "\${dirs[@]}" --out "\$tmp"
-"\$exe" report "\$tmp"
+note="report: \$out/merged/report.html"
+if "\$exe" report --help >/dev/null 2>&1; then
+  "\$exe" report "\$tmp"
+else
+  note="no report: this eyeadapt has no 'report' command"
+  echo "eyeadapt-slurm: WARNING: \$exe has no 'report' command; merged without coherence.csv/report.html" >&2
+fi
 rm -rf "\$out/merged"
 mv "\$tmp" "\$out/merged"
-echo "eyeadapt-slurm: merged into \$out/merged (report: \$out/merged/report.html)"
+echo "eyeadapt-slurm: merged into \$out/merged (\$note)"
 EOF
   chmod +x "$RENDER_SCRIPT" "$MERGE_SCRIPT"
 }
