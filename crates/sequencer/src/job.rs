@@ -43,9 +43,6 @@ use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// Temporal adaptation presets of estimators.md §8.
-pub const TEMPORAL_PRESETS: &[&str] = &["none", "fairchild", "rinner", "artistic"];
-
 /// The built-in demo job (`eyeadapt sequence` with no JOB).
 pub const DEMO_JOB: &str = include_str!("../../../configs/demo.toml");
 
@@ -354,15 +351,9 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         .map(|t| t.get_ref().clone())
         .unwrap_or_default();
     for f in &temporal.filters {
-        if !TEMPORAL_PRESETS.contains(&f.as_str()) {
-            err(
-                &mut errors,
-                raw.temporal.as_ref().map_or(0, |t| t.span().start),
-                format!(
-                    "temporal.filters: unknown preset \"{f}\" (known: {})",
-                    TEMPORAL_PRESETS.join(", ")
-                ),
-            );
+        if let Err(e) = f.parse::<eyeadapt_color::TemporalFilter>() {
+            let at = raw.temporal.as_ref().map_or(0, |t| t.span().start);
+            err(&mut errors, at, format!("temporal.filters: {e}"));
         }
     }
     // Camera path: the job's, else the scene's.
