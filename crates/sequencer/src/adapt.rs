@@ -339,8 +339,9 @@ pub const CSV_HEADER: &str = "frame,time_s,estimator,X,Y,Z,x,y,u_prime,v_prime,c
 
 fn num(out: &mut String, v: f64) {
     if v.is_finite() {
-        // Shortest round-trip representation: exact, stable, diff-friendly.
-        let _ = write!(out, "{v}");
+        // Shortest round-trip representation (exact, stable, diff-friendly). Debug keeps a
+        // decimal point on integral values ("1.0"), so readers infer a float column.
+        let _ = write!(out, "{v:?}");
     } else {
         out.push_str("NaN");
     }

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The project's test command (the README's second command; .ci/run calls it).
+#
+#   1. cargo test, every crate, optimised (rendering tests use tiny images);
+#   2. the per-frame CSV loads in pandas with the documented columns and types
+#      (a throw-away venv under target/, pandas from PyPI);
+#   3. the Slurm end-to-end test on a real single-node Slurm (Debian packages,
+#      installed by scripts/slurm/local-cluster.sh; needs root, skipped otherwise
+#      unless EYEADAPT_REQUIRE_SLURM=1).
+# Prints 'N passed, M failed' for the stages and exits non-zero if any failed.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+passed=0 failed=0
+stage() {
+  local name=$1
+  shift
+  echo "==> $name"
+  if "$@"; then
+    passed=$((passed + 1))
+    echo "ok   - $name"
+  else
+    failed=$((failed + 1))
+    echo "FAIL - $name"
+  fi
+}
+
+cargo_tests() {
+  cargo build --release --bins
+  cargo test --workspace --release
+}
+
+pandas_csv() {
+  local venv=target/venv-test
+  if [[ ! -x $venv/bin/python ]] || ! "$venv/bin/python" -c 'import pandas' 2>/dev/null; then
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install --quiet --disable-pip-version-check pandas
+  fi
+  local out
+  out=$(mktemp -d)
+  target/release/eyeadapt sequence --frames 0-5 --width 32 --height 18 --spp 2 \
+    --eye-samples 1024 --out "$out/seq" --no-report --no-progress-bar >/dev/null
+  "$venv/bin/python" scripts/check_csv_pandas.py "$out/seq/adaptation.csv"
+  rm -rf "$out"
+}
+
+slurm_e2e() {
+  if [[ $(id -u) -ne 0 && ${EYEADAPT_REQUIRE_SLURM:-0} != 1 ]]; then
+    echo "skipped: the Slurm end-to-end test needs root (set EYEADAPT_REQUIRE_SLURM=1 to fail instead)"
+    return 0
+  fi
+  EYEADAPT=$PWD/target/release/eyeadapt bash tests/slurm/e2e.sh
+}
+
+stage "cargo tests" cargo_tests
+stage "adaptation.csv in pandas" pandas_csv
+stage "Slurm end-to-end" slurm_e2e
+echo "test.sh: $passed passed, $failed failed"
+((failed == 0))
