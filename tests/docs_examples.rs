@@ -20,8 +20,12 @@ fn fenced_toml(doc: &str) -> Vec<String> {
 
 #[test]
 fn scene_format_example_loads_and_renders() {
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md")).unwrap();
-    let example = fenced_toml(&doc).into_iter().next().expect("a toml example");
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md"))
+        .unwrap();
+    let example = fenced_toml(&doc)
+        .into_iter()
+        .next()
+        .expect("a toml example");
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("meshes")).unwrap();
     // The example references an OBJ; give it a small tetrahedron.
@@ -32,11 +36,21 @@ fn scene_format_example_loads_and_renders() {
     .unwrap();
     let scene = dir.path().join("scene.toml");
     std::fs::write(&scene, &example).unwrap();
-    let s = eyeadapt_scene::load_scene(&scene).unwrap_or_else(|e| panic!("documented example fails:\n{e}"));
+    let s = eyeadapt_scene::load_scene(&scene)
+        .unwrap_or_else(|e| panic!("documented example fails:\n{e}"));
     assert_eq!(s.lights.len(), 2);
     assert!(s.camera_path.is_some());
     let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
-        .args(["render", scene.to_str().unwrap(), "--spp", "1", "--width", "16", "--height", "16"])
+        .args([
+            "render",
+            scene.to_str().unwrap(),
+            "--spp",
+            "1",
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ])
         .args(["--out", dir.path().join("out").to_str().unwrap()])
         .output()
         .unwrap();
@@ -45,13 +59,25 @@ fn scene_format_example_loads_and_renders() {
 
 #[test]
 fn job_format_example_parses() {
-    let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/crates/sequencer/src/job.rs")).unwrap();
+    let src = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/crates/sequencer/src/job.rs"
+    ))
+    .unwrap();
     let doc: String = src
         .lines()
         .take_while(|l| l.starts_with("//!"))
-        .map(|l| format!("{}\n", l.trim_start_matches("//!").strip_prefix(' ').unwrap_or("")))
+        .map(|l| {
+            format!(
+                "{}\n",
+                l.trim_start_matches("//!").strip_prefix(' ').unwrap_or("")
+            )
+        })
         .collect();
-    let example = fenced_toml(&doc).into_iter().next().expect("a toml example in job.rs docs");
+    let example = fenced_toml(&doc)
+        .into_iter()
+        .next()
+        .expect("a toml example in job.rs docs");
     let dir = tempfile::tempdir().unwrap();
     let job = dir.path().join("job.toml");
     std::fs::write(&job, &example).unwrap();
