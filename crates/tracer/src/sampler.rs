@@ -96,19 +96,58 @@ pub fn hash_key(words: &[u64]) -> u64 {
         .fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w)))
 }
 
-/// The four Sobol dimensions of one index, computed together (only set bits are visited).
-#[inline]
-fn sobol4(mut index: u32) -> [u32; 4] {
-    let mut x = [0u32; 4];
-    while index != 0 {
-        let bit = index.trailing_zeros() as usize;
-        for (d, v) in x.iter_mut().enumerate() {
-            *v ^= SOBOL[d][bit];
+/// Sobol points of the first four dimensions for every byte value of each of the four bytes
+/// of an index: the point of an index is the XOR of four table entries (Sobol is linear over
+/// GF(2) in the index bits). 16 KiB, built at compile time.
+static SOBOL_BYTES: [[[u32; 4]; 256]; 4] = sobol_byte_tables();
+
+const fn sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
+    let mut t = [[[0u32; 4]; 256]; 4];
+    let mut byte = 0;
+    while byte < 4 {
+        let mut v = 0;
+        while v < 256 {
+            let mut d = 0;
+            while d < 4 {
+                let mut x = 0u32;
+                let mut bit = 0;
+                while bit < 8 {
+                    if (v >> bit) & 1 == 1 {
+                        x ^= SOBOL[d][byte * 8 + bit];
+                    }
+                    bit += 1;
+                }
+                t[byte][v][d] = x;
+                d += 1;
+            }
+            v += 1;
         }
-        index &= index - 1;
+        byte += 1;
     }
-    x
+    t
 }
+
+/// The four Sobol dimensions of one index.
+#[inline]
+fn sobol4(index: u32) -> [u32; 4] {
+    let b = index.to_le_bytes();
+    let (t0, t1, t2, t3) = (
+        &SOBOL_BYTES[0][b[0] as usize],
+        &SOBOL_BYTES[1][b[1] as usize],
+        &SOBOL_BYTES[2][b[2] as usize],
+        &SOBOL_BYTES[3][b[3] as usize],
+    );
+    [
+        t0[0] ^ t1[0] ^ t2[0] ^ t3[0],
+        t0[1] ^ t1[1] ^ t2[1] ^ t3[1],
+        t0[2] ^ t1[2] ^ t2[2] ^ t3[2],
+        t0[3] ^ t1[3] ^ t2[3] ^ t3[3],
+    ]
+}
+
+/// Chunks drawn from the scrambled Sobol sequence; later chunks (deeper bounces, whose share
+/// of the variance is small) use plain hashing, which costs a fraction of the scrambling.
+pub const LOW_DISCREPANCY_CHUNKS: u32 = 6;
 
 /// The random numbers of one sample (one camera path, one sensor path).
 #[derive(Clone, Copy, Debug)]
@@ -140,6 +179,12 @@ impl SampleStream {
     fn enter_chunk(&mut self, chunk: u32) {
         self.chunk = chunk;
         let seed = mix64(self.key ^ (chunk as u64).wrapping_mul(0xd1b5_4a32_d192_ed03));
+        if chunk >= LOW_DISCREPANCY_CHUNKS {
+            let a = mix64(seed ^ self.index as u64);
+            let b = mix64(a);
+            self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32];
+            return;
+        }
         let shuffled = nested_uniform_scramble(self.index, seed as u32);
         let v = sobol4(shuffled);
         // Each coordinate needs an independent scramble: seeds that are functions of one
@@ -200,6 +245,15 @@ mod tests {
         }
         assert_eq!(a, draw(hash_key(&[1, 3, 17, 5]), 9));
         assert_ne!(a, draw(hash_key(&[1, 3, 5, 17]), 9));
+    }
+
+    #[test]
+    fn byte_tables_equal_the_bit_loop() {
+        for i in [0u32, 1, 2, 3, 255, 256, 0x1234_5678, u32::MAX, 0x8000_0001] {
+            for d in 0..4 {
+                assert_eq!(sobol4(i)[d], sobol(i, d), "index {i} dim {d}");
+            }
+        }
     }
 
     #[test]
