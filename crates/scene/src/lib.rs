@@ -12,6 +12,7 @@
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
 //! intensity (radiance × area / distance² behaves as in Mitsuba 3's `rgb` emitters).
 
+mod any;
 mod camera;
 mod diagnostic;
 mod format;
@@ -19,16 +20,19 @@ mod light;
 mod load;
 mod material;
 mod mesh;
+mod mitsuba;
 mod obj;
 mod shapes;
 mod transform;
 
+pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::camera::Camera;
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::light::Light;
 pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
 pub use crate::material::{Bsdf, Material, MaterialId};
 pub use crate::mesh::Mesh;
+pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::transform::Transform;
 
