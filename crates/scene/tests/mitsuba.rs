@@ -208,6 +208,14 @@ fn transform_operations_apply_in_document_order() {
         (b - a).cross(c - a).normalize().distance(Vec3::Y) < 1e-6,
         "+z turned to +y"
     );
+    // A mirroring transform keeps the winding, so the front side turns round (as in Mitsuba).
+    let s = load(
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"-1\"/></transform><emitter type=\"area\"/></shape>",
+    )
+    .unwrap();
+    let m = &s.meshes[0];
+    let [a, b, c] = m.indices[0].map(|i| m.positions[i as usize]);
+    assert!((b - a).cross(c - a).normalize().distance(-Vec3::Z) < 1e-6);
 }
 
 #[test]
@@ -286,6 +294,12 @@ fn supported_plugins_load() {
         s.meshes[0].normals.len(),
         3,
         "Mitsuba smooths meshes without normals"
+    );
+    assert!(
+        s.meshes[0]
+            .normals
+            .iter()
+            .all(|n| n.distance(Vec3::Z) < 1e-6)
     );
     let sphere = &s.meshes[1];
     let c = sphere.positions.iter().sum::<Vec3>() / sphere.positions.len() as f32;
