@@ -9,6 +9,9 @@
 //! 3×3 transform for a chosen [`Cat`] and degree of adaptation (see
 //! [`degree_of_adaptation`]). [`xyz_to_lab`], [`delta_e_2000`],
 //! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
+//!
+//! The temporal side: coherence metrics of a per-frame adaptation-colour series
+//! ([`series_metrics`]).
 
 mod cat;
 mod cct;
@@ -16,6 +19,7 @@ mod degree;
 mod estimators;
 mod hsv;
 mod lab;
+mod series_metrics;
 mod spaces;
 
 pub use crate::{
@@ -25,6 +29,10 @@ pub use crate::{
     estimators::*,
     hsv::{Hsv, hsv, hsv_of_8bit, hsv_of_linear},
     lab::{HUE_BRANCH_TOLERANCE_DEG, delta_e_2000, xyz_to_lab},
+    series_metrics::{
+        DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MetricRow, SeriesError, SeriesMetrics,
+        SeriesParams, SeriesPoint, series_metrics,
+    },
     spaces::{
         D65_XY, D65_XYZ, M_RGB_TO_XYZ, M_XYZ_TO_RGB, delta_uv, luminance, luminance_f32,
         rgb_to_xyz, srgb_decode, srgb_encode, xy_to_uv, xy_to_xyz, xyz_to_rgb, xyz_to_uv,
