@@ -11,13 +11,14 @@
 //! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
 //!
 //! The temporal side: coherence metrics of a per-frame adaptation-colour series
-//! ([`series_metrics`]).
+//! ([`series_metrics`]) and of the adapted image sequence ([`image_metrics`]).
 
 mod cat;
 mod cct;
 mod degree;
 mod estimators;
 mod hsv;
+mod image_metrics;
 mod lab;
 mod series_metrics;
 mod spaces;
@@ -28,6 +29,12 @@ pub use crate::{
     degree::{DegreeModel, L_A_SRGB, Surround, degree_cie97s, degree_of_adaptation},
     estimators::*,
     hsv::{Hsv, hsv, hsv_of_8bit, hsv_of_linear},
+    image_metrics::{
+        DEFAULT_DE_THRESHOLD, DEFAULT_STRIDE, DEFAULT_Y_PERCENTILE, FrameImageMetrics,
+        GREY_REFLECTANCE, ImageMetrics, ImageMetricsAccumulator, ImageMetricsParams, LabConverter,
+        LabImage, LuminancePercentile, PixelSubset, SequenceFrame, SeriesSummary, delta_e_cat_grey,
+        image_metrics, image_metrics_summary, mean_delta_e, sequence_y_n,
+    },
     lab::{HUE_BRANCH_TOLERANCE_DEG, delta_e_2000, xyz_to_lab},
     series_metrics::{
         DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MetricRow, SeriesError, SeriesMetrics,
