@@ -11,7 +11,8 @@
 //! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
 //!
 //! The temporal side: coherence metrics of a per-frame adaptation-colour series
-//! ([`series_metrics`]) and of the adapted image sequence ([`image_metrics`]).
+//! ([`series_metrics`]) and of the adapted image sequence ([`image_metrics`]), and a causal
+//! filter modelling how fast the eye re-adapts ([`TemporalFilter`], run by [`AdaptationFilter`]).
 
 mod cat;
 mod cct;
@@ -22,6 +23,7 @@ mod image_metrics;
 mod lab;
 mod series_metrics;
 mod spaces;
+mod temporal_filter;
 
 pub use crate::{
     cat::{Cat, UnknownCat, adaptation_matrix_rgb, adaptation_matrix_xyz},
@@ -45,4 +47,8 @@ pub use crate::{
         rgb_to_xyz, srgb_decode, srgb_encode, xy_to_uv, xy_to_xyz, xyz_to_rgb, xyz_to_uv,
         xyz_to_xy,
     },
+};
+pub use temporal_filter::{
+    AdaptationFilter, FilterError, FilterFlags, FilterInit, FilterOutput, FilterParams,
+    TemporalFilter, filter_series, smoothing_factor,
 };

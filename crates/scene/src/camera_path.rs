@@ -386,22 +386,18 @@ impl CameraPath {
 
     /// Position at time t inside segment i (T_i ≤ t < T_{i+1}).
     fn position(&self, i: usize, t: f64) -> DVec3 {
-        let h = self.knot_interval(i as isize);
-        if h == 0.0 {
+        if self.knot_interval(i as isize) == 0.0 {
             return self.keyframes[i].position;
         }
-        let u = self.knot_progress(i, t);
+        self.curve(i, self.knot_progress(i, t))
+    }
+
+    /// The centripetal spline on segment i at local knot parameter u ∈ [0, h_i], h_i > 0.
+    fn curve(&self, i: usize, u: f64) -> DVec3 {
         let j = i as isize;
-        catmull_rom_segment(
-            [
-                self.point(j - 1),
-                self.point(j),
-                self.point(j + 1),
-                self.point(j + 2),
-            ],
-            [self.knot_interval(j - 1), h, self.knot_interval(j + 1)],
-            u,
-        )
+        let points = [-1, 0, 1, 2].map(|k| self.point(j + k));
+        let intervals = [-1, 0, 1].map(|k| self.knot_interval(j + k));
+        catmull_rom_segment(points, intervals, u)
     }
 }
 
@@ -596,18 +592,10 @@ mod tests {
         let path = wiggly_path();
         let keys = &path.keyframes;
         let naive = |i: usize, t: f64| {
-            let j = i as isize;
-            let h = path.knot_interval(j);
-            let u = (t - keys[i].time) / (keys[i + 1].time - keys[i].time) * h;
-            catmull_rom_segment(
-                [
-                    path.point(j - 1),
-                    path.point(j),
-                    path.point(j + 1),
-                    path.point(j + 2),
-                ],
-                [path.knot_interval(j - 1), h, path.knot_interval(j + 1)],
-                u,
+            let h = path.knot_interval(i as isize);
+            path.curve(
+                i,
+                (t - keys[i].time) / (keys[i + 1].time - keys[i].time) * h,
             )
         };
         let (i, e) = (2, 1e-6);
@@ -633,20 +621,9 @@ mod tests {
         }
         let keys = &path.keyframes;
         for i in 0..keys.len() - 1 {
-            let j = i as isize;
             for n in 0..=20 {
                 let s = n as f64 / 20.0;
-                let h = path.knot_interval(j);
-                let classic = catmull_rom_segment(
-                    [
-                        path.point(j - 1),
-                        path.point(j),
-                        path.point(j + 1),
-                        path.point(j + 2),
-                    ],
-                    [path.knot_interval(j - 1), h, path.knot_interval(j + 1)],
-                    s * h,
-                );
+                let classic = path.curve(i, s * path.knot_interval(i as isize));
                 let t = keys[i].time + s * (keys[i + 1].time - keys[i].time);
                 assert_close(
                     path.sample(t).position,

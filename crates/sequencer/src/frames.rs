@@ -61,10 +61,11 @@ impl FrameSet {
     ) -> Result<FrameSet, FrameSpecError> {
         let spec = format!("{start}-{end}:{step}");
         let step_at = spec.len() - step.to_string().len();
-        let mut frames = Vec::new();
-        let mut total = 0;
-        push_range(&spec, 0, start, end, step, step_at, &mut total, &mut frames)?;
-        Ok(FrameSet { frames })
+        let mut collector = Collector::new(&spec);
+        collector.push_range(0, start, end, step, step_at)?;
+        Ok(FrameSet {
+            frames: collector.frames,
+        })
     }
 
     pub fn as_slice(&self) -> &[u32] {
@@ -112,14 +113,13 @@ impl FromStr for FrameSet {
     type Err = FrameSpecError;
 
     fn from_str(spec: &str) -> Result<FrameSet, FrameSpecError> {
-        let mut frames = Vec::new();
-        let mut total = 0;
+        let mut collector = Collector::new(spec);
         let mut item_start = 0;
         for item in spec.split(',') {
-            parse_item(spec, item, item_start, &mut total, &mut frames)?;
+            collector.parse_item(item, item_start)?;
             item_start += item.len() + 1;
         }
-        Ok(FrameSet::from_frames(frames))
+        Ok(FrameSet::from_frames(collector.frames))
     }
 }
 
@@ -149,49 +149,96 @@ impl fmt::Display for FrameSet {
     }
 }
 
-/// Parses one comma-separated item (`item` starts at byte `offset` of `spec`) and appends its
-/// frames.
-fn parse_item(
-    spec: &str,
-    item: &str,
-    offset: usize,
-    total: &mut u64,
-    frames: &mut Vec<u32>,
-) -> Result<(), FrameSpecError> {
-    let err = |byte: usize, kind| FrameSpecError::new(spec, byte, kind);
-    if item.trim().is_empty() {
-        // Point at the comma (or the end) where an item was expected.
-        let at = offset + item.len() - item.trim_start().len();
-        return Err(err(at, FrameSpecErrorKind::EmptyItem));
+/// Frames gathered from a spec's items, with the spec kept for error messages.
+struct Collector<'a> {
+    spec: &'a str,
+    /// Frames so far *before* de-duplication: the size cap is checked against this, so memory
+    /// is bounded before anything is allocated.
+    total: u64,
+    frames: Vec<u32>,
+}
+
+impl<'a> Collector<'a> {
+    fn new(spec: &'a str) -> Collector<'a> {
+        Collector {
+            spec,
+            total: 0,
+            frames: Vec::new(),
+        }
     }
-    // Split off the step first so that `1..10:2` and `1-10:2` share the range code below.
-    let (range, step) = match item.split_once(':') {
-        Some((range, step)) => (range, Some((step, offset + range.len() + 1))),
-        None => (item, None),
-    };
-    // `..` is checked before `-` because Blender's form never contains a dash.
-    let bounds = range
-        .split_once("..")
-        .map(|(a, b)| (a, b, 2))
-        .or_else(|| range.split_once('-').map(|(a, b)| (a, b, 1)));
-    match bounds {
-        None => {
-            let frame = parse_number(spec, range, offset, "frame")?;
-            if let Some((_, at)) = step {
-                return Err(err(at - 1, FrameSpecErrorKind::StepWithoutRange));
+
+    /// Parses one comma-separated item, which starts at byte `offset` of the spec.
+    fn parse_item(&mut self, item: &str, offset: usize) -> Result<(), FrameSpecError> {
+        let spec = self.spec;
+        if item.trim().is_empty() {
+            // Point at the comma (or the end) where an item was expected.
+            let at = offset + item.len() - item.trim_start().len();
+            return Err(FrameSpecError::new(spec, at, FrameSpecErrorKind::EmptyItem));
+        }
+        // Split off the step first so that `1..10:2` and `1-10:2` share the range code below.
+        let (range, step) = match item.split_once(':') {
+            Some((range, step)) => (range, Some((step, offset + range.len() + 1))),
+            None => (item, None),
+        };
+        // `..` is checked before `-` because Blender's form never contains a dash.
+        let bounds = range
+            .split_once("..")
+            .map(|(a, b)| (a, b, 2))
+            .or_else(|| range.split_once('-').map(|(a, b)| (a, b, 1)));
+        match bounds {
+            None => {
+                let frame = parse_number(spec, range, offset, "frame")?;
+                if let Some((_, at)) = step {
+                    let kind = FrameSpecErrorKind::StepWithoutRange;
+                    return Err(FrameSpecError::new(spec, at - 1, kind));
+                }
+                self.push_range(offset, frame, frame, 1, offset)
             }
-            push_range(spec, offset, frame, frame, 1, 1, total, frames)
+            Some((a, b, sep_len)) => {
+                let start = parse_number(spec, a, offset, "range start")?;
+                let end_offset = offset + a.len() + sep_len;
+                let end = parse_number(spec, b, end_offset, "range end")?;
+                let (step, step_at) = match step {
+                    Some((text, at)) => (parse_number(spec, text, at, "step")?, at),
+                    None => (1, offset),
+                };
+                self.push_range(offset, start, end, step, step_at)
+            }
         }
-        Some((a, b, sep_len)) => {
-            let start = parse_number(spec, a, offset, "range start")?;
-            let end_offset = offset + a.len() + sep_len;
-            let end = parse_number(spec, b, end_offset, "range end")?;
-            let (step, step_at) = match step {
-                Some((text, at)) => (parse_number(spec, text, at, "step")?, at),
-                None => (1, offset),
-            };
-            push_range(spec, offset, start, end, step, step_at, total, frames)
+    }
+
+    /// Appends `start..=end` by `step` after checking the range and the size cap; `item_at`
+    /// and `step_at` are byte offsets for error columns.
+    fn push_range(
+        &mut self,
+        item_at: usize,
+        start: u32,
+        end: u32,
+        step: u32,
+        step_at: usize,
+    ) -> Result<(), FrameSpecError> {
+        let spec = self.spec;
+        // Columns point at the first non-blank character of the item or step.
+        let item_at = first_non_space(spec, item_at);
+        let step_at = first_non_space(spec, step_at);
+        if start > end {
+            let kind = FrameSpecErrorKind::Reversed { start, end };
+            return Err(FrameSpecError::new(spec, item_at, kind));
         }
+        if step == 0 {
+            let kind = FrameSpecErrorKind::ZeroStep;
+            return Err(FrameSpecError::new(spec, step_at, kind));
+        }
+        let count = (end - start) as u64 / step as u64 + 1;
+        self.total += count;
+        if self.total > MAX_FRAMES {
+            let kind = FrameSpecErrorKind::TooMany { total: self.total };
+            return Err(FrameSpecError::new(spec, item_at, kind));
+        }
+        // u64 arithmetic: `start + k·step` may pass u32::MAX only after the last frame.
+        let frames = (0..count).map(|k| (start as u64 + k * step as u64) as u32);
+        self.frames.extend(frames);
+        Ok(())
     }
 }
 
@@ -226,45 +273,6 @@ fn parse_number(
         let kind = FrameSpecErrorKind::TooLarge(trimmed.to_string());
         FrameSpecError::new(spec, at, kind)
     })
-}
-
-/// Appends `start..=end` by `step`, after checking the range and the running frame count.
-/// `total` counts frames before de-duplication, so memory is bounded before anything is
-/// allocated; `item_at` and `step_at` are byte offsets for error columns.
-#[allow(clippy::too_many_arguments)]
-fn push_range(
-    spec: &str,
-    item_at: usize,
-    start: u32,
-    end: u32,
-    step: u32,
-    step_at: usize,
-    total: &mut u64,
-    frames: &mut Vec<u32>,
-) -> Result<(), FrameSpecError> {
-    // Columns point at the first non-blank character of the item or step.
-    let item_at = first_non_space(spec, item_at);
-    let step_at = first_non_space(spec, step_at);
-    if start > end {
-        let kind = FrameSpecErrorKind::Reversed { start, end };
-        return Err(FrameSpecError::new(spec, item_at, kind));
-    }
-    if step == 0 {
-        return Err(FrameSpecError::new(
-            spec,
-            step_at,
-            FrameSpecErrorKind::ZeroStep,
-        ));
-    }
-    let count = (end - start) as u64 / step as u64 + 1;
-    *total += count;
-    if *total > MAX_FRAMES {
-        let kind = FrameSpecErrorKind::TooMany { total: *total };
-        return Err(FrameSpecError::new(spec, item_at, kind));
-    }
-    // u64 arithmetic: `start + k·step` may pass u32::MAX only after the last frame.
-    frames.extend((0..count).map(|k| (start as u64 + k * step as u64) as u32));
-    Ok(())
 }
 
 /// A frame spec that could not be parsed, with the 1-based character column of the culprit.
