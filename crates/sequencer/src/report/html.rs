@@ -15,8 +15,9 @@ fn fmt(v: f64) -> String {
     if !v.is_finite() {
         return "–".into();
     }
-    if v == 0.0 {
-        return "0".into();
+    if v.fract() == 0.0 && v.abs() < 1e9 {
+        // Counts and frame numbers.
+        return format!("{v:.0}");
     }
     let a = v.abs();
     if (1e-3..1e5).contains(&a) {
@@ -189,6 +190,8 @@ mod tests {
         assert_eq!(fmt(123.456), "123");
         assert_eq!(fmt(0.00001234), "1.23e-5");
         assert_eq!(fmt(f64::NAN), "–");
+        assert_eq!(fmt(23.0), "23");
+        assert_eq!(fmt(0.0), "0");
         assert_eq!(escape("<a&b>"), "&lt;a&amp;b&gt;");
     }
 }
