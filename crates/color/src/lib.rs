@@ -8,7 +8,9 @@
 //! plus flags; [`adaptation_matrix_rgb`] turns that white into the per-frame
 //! 3×3 transform for a chosen [`Cat`] and degree of adaptation (see
 //! [`degree_of_adaptation`]). [`xyz_to_lab`], [`delta_e_2000`],
-//! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
+//! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics;
+//! [`series_metrics`] gives the temporal-coherence metrics of a per-frame
+//! adaptation-colour series (§7.2).
 
 mod cat;
 mod cct;
@@ -16,6 +18,7 @@ mod degree;
 mod estimators;
 mod hsv;
 mod lab;
+mod series_metrics;
 mod spaces;
 
 pub use crate::{
@@ -30,4 +33,9 @@ pub use crate::{
         rgb_to_xyz, srgb_decode, srgb_encode, xy_to_uv, xy_to_xyz, xyz_to_rgb, xyz_to_uv,
         xyz_to_xy,
     },
+};
+
+pub use series_metrics::{
+    DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MetricRow, SeriesError, SeriesMetrics,
+    SeriesParams, SeriesPoint, series_metrics,
 };
