@@ -827,7 +827,7 @@ fn case4(runs: &[JobRun]) -> (&'static str, Out) {
             format!("`{}`", e.name),
             uv_cell(e.uv()),
             f(d, 5),
-            format!("{wh:.0}°"),
+            format!("{:.0}°", wh.round().rem_euclid(360.0)),
             hue_cell(u.h, u.s),
             pct(u.s),
             hue_cell(l.h, l.s),
@@ -846,7 +846,7 @@ fn case4(runs: &[JobRun]) -> (&'static str, Out) {
             "WCAM's white: Δu′v′ to D65 = {} (≥ {THETA_JND}: {}), hue of its linear sRGB {:.0}° (within 40° of red 0°: {})",
             f(dw, 5),
             yes(dw >= THETA_JND),
-            wwh,
+            wwh.round().rem_euclid(360.0),
             yes(red)
         ),
         dw >= THETA_JND && red,
