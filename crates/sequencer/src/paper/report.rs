@@ -67,8 +67,11 @@ fn case_note(case: u32) -> Option<&'static str> {
         2 => Some(
             "The image-only baselines cannot tell the two worlds apart — their raw images differ only through \
              interreflections — so they neutralise the orange world too: the \"world of one reflectance\" failure \
-             of colour constancy that [GRC13] §3 cites (Ruppertsberg & Bloj 2007). `eye`, `wcam` and `ncns` \
-             read the illumination (irradiance or achromatic re-render), not the image.",
+             of colour constancy that [GRC13] §3 cites (Ruppertsberg & Bloj 2007). `eye_fov`, which sees the same \
+             walls but not the ceiling lamp, fails the same way: here it is light from outside the field of view \
+             that tells the full sensor what the illuminant is. `wcam` reads the illumination through its \
+             achromatic re-render; `ncns` is undefined in the orange world (no white surface) and falls back to \
+             D65.",
         ),
         4 => Some(
             "The renderer picks lights for next-event estimation in proportion to their luminous power, so the \
