@@ -34,6 +34,7 @@ pub use crate::light::Light;
 pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
 pub use crate::material::{Bsdf, Material, MaterialId};
 pub use crate::mesh::Mesh;
+pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::transform::Transform;
 

@@ -3,7 +3,9 @@ use crate::{Bsdf, Material, MaterialId, Mesh, Rgb};
 use glam::Vec3;
 use std::path::Path;
 
-pub(crate) struct LoadedObj {
+/// The triangles and materials of one OBJ file.
+#[derive(Clone, Debug)]
+pub struct LoadedObj {
     pub meshes: Vec<Mesh>,
     /// Per mesh: the MTL material, or `None` for the error material.
     pub materials: Vec<Option<Material>>,
@@ -23,6 +25,28 @@ pub(crate) fn load_obj(
     }
     let (models, mtls) = tobj::load_obj(path, &tobj::GPU_LOAD_OPTIONS)
         .map_err(|e| format!("cannot load OBJ {}: {e}", path.display()))?;
+    convert(path, models, mtls, override_material)
+}
+
+/// The same validation as a scene's `type = "obj"` shape, on an OBJ (and optionally its MTL)
+/// held in memory; every `mtllib` resolves to `mtl`. `name` only labels messages. For fuzzing
+/// and tests: the scene loader itself reads files with [`crate::load_scene`].
+pub fn load_obj_bytes(obj: &[u8], mtl: Option<&[u8]>, name: &Path) -> Result<LoadedObj, String> {
+    let (models, mtls) =
+        tobj::load_obj_buf(&mut &obj[..], &tobj::GPU_LOAD_OPTIONS, |_| match mtl {
+            Some(bytes) => tobj::load_mtl_buf(&mut &bytes[..]),
+            None => Err(tobj::LoadError::OpenFileFailed),
+        })
+        .map_err(|e| format!("cannot load OBJ {}: {e}", name.display()))?;
+    convert(name, models, mtls, None)
+}
+
+fn convert(
+    path: &Path,
+    models: Vec<tobj::Model>,
+    mtls: Result<Vec<tobj::Material>, tobj::LoadError>,
+    override_material: Option<MaterialId>,
+) -> Result<LoadedObj, String> {
     let mut warnings = Vec::new();
     let mtls = match mtls {
         Ok(m) => m,
@@ -88,7 +112,7 @@ pub(crate) fn load_obj(
             None
         } else {
             match m.material_id.and_then(|i| mtls.get(i)) {
-                Some(mtl) => Some(from_mtl(path, mtl)),
+                Some(mtl) => Some(from_mtl(path, mtl)?),
                 None => {
                     if !mtls.is_empty() && !warned_unknown {
                         out.warnings.push(format!(
@@ -117,15 +141,31 @@ pub(crate) fn load_obj(
     Ok(out)
 }
 
-fn from_mtl(path: &Path, mtl: &tobj::Material) -> Material {
-    let kd = mtl.diffuse.map_or(Rgb::splat(0.8), Rgb::from_array);
-    let ke = mtl.emissive.map_or(Rgb::ZERO, Rgb::from_array);
-    Material {
+/// An MTL material as a diffuse [`Material`]. `Kd` above 1 is clamped (a sloppy MTL cannot make
+/// a surface create energy); NaN, infinite or negative `Kd`/`Ke` are errors, as in TOML scenes.
+fn from_mtl(path: &Path, mtl: &tobj::Material) -> Result<Material, String> {
+    let colour = |key: &str, v: Option<[f32; 3]>, default: Rgb| -> Result<Rgb, String> {
+        let Some(a) = v else { return Ok(default) };
+        let problem = if a.iter().any(|c| !c.is_finite()) {
+            "has a non-finite component"
+        } else if a.iter().any(|&c| c < 0.0) {
+            "has a negative component"
+        } else {
+            return Ok(Rgb::from_array(a));
+        };
+        Err(format!(
+            "OBJ {}: MTL material \"{}\": {key} {a:?} {problem}",
+            path.display(),
+            mtl.name
+        ))
+    };
+    let kd = colour("Kd", mtl.diffuse, Rgb::splat(0.8))?;
+    let ke = colour("Ke", mtl.emissive, Rgb::ZERO)?;
+    Ok(Material {
         name: format!("{}:{}", path.display(), mtl.name),
-        // Clamp so that a sloppy MTL cannot make a surface create energy.
         bsdf: Bsdf::Diffuse {
-            reflectance: kd.clamp(Rgb::ZERO, Rgb::ONE),
+            reflectance: kd.min(Rgb::ONE),
         },
-        emission: ke.max(Rgb::ZERO),
-    }
+        emission: ke,
+    })
 }
