@@ -257,15 +257,12 @@ fn convert(
 }
 
 /// An MTL material as a diffuse [`Material`]. `Kd` above 1 is clamped (a sloppy MTL cannot make
-/// a surface create energy); NaN, infinite or negative `Kd`/`Ke` are errors, as in TOML scenes.
+/// a surface create energy); NaN, infinite, negative or absurdly large (above
+/// [`crate::MAX_COLOUR`]) `Kd`/`Ke` are errors, as in TOML scenes.
 fn from_mtl(path: &Path, mtl: &tobj::Material) -> Result<Material, String> {
     let colour = |key: &str, v: Option<[f32; 3]>, default: Rgb| -> Result<Rgb, String> {
         let Some(a) = v else { return Ok(default) };
-        let problem = if a.iter().any(|c| !c.is_finite()) {
-            "has a non-finite component"
-        } else if a.iter().any(|&c| c < 0.0) {
-            "has a negative component"
-        } else {
+        let Err(problem) = crate::check_colour(Rgb::from_array(a)) else {
             return Ok(Rgb::from_array(a));
         };
         Err(format!(
