@@ -629,3 +629,36 @@ file = "degenerate.obj"
         assert!(row.contains(",1,"), "valid estimate expected: {row}");
     }
 }
+
+/// The fuzz targets' checks (`fuzz/fuzz_targets/checks.rs`), run here on every input kept in
+/// `tests/corpus/fuzz-regressions/TARGET/`: inputs that once crashed a target, and a few seeds.
+#[path = "../fuzz/fuzz_targets/checks.rs"]
+mod checks;
+
+#[test]
+fn fuzz_regressions_no_longer_crash() {
+    let targets: [(&str, fn(&[u8])); 3] = [
+        ("scene_toml", checks::scene_toml),
+        ("obj", checks::obj),
+        ("frame_spec", checks::frame_spec),
+    ];
+    let mut ran = 0;
+    let mut crashed = Vec::new();
+    for (target, check) in targets {
+        let dir = corpus().join("fuzz-regressions").join(target);
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut files: Vec<PathBuf> = entries.map(|e| e.unwrap().path()).collect();
+        files.sort();
+        for f in files {
+            let data = std::fs::read(&f).unwrap();
+            if std::panic::catch_unwind(|| check(&data)).is_err() {
+                crashed.push(f.display().to_string());
+            }
+            ran += 1;
+        }
+    }
+    println!("fuzz regressions: {ran} inputs, {} crashed", crashed.len());
+    assert!(crashed.is_empty(), "still crashing: {crashed:?}");
+}
