@@ -30,6 +30,20 @@ pub enum Command {
     Merge(MergeArgs),
     /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).
     Scenes,
+    /// Temporal-coherence report of a sequence directory: coherence.csv, plots, report.html.
+    Report(ReportArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ReportArgs {
+    /// Sequence output directory (holds manifest.json and adaptation.csv).
+    pub dir: PathBuf,
+    /// Also encode video/<estimator>.mp4 and video/raw_wcam_eye.mp4 with ffmpeg.
+    #[arg(long)]
+    pub video: bool,
+    /// Gaussian σ in seconds of the hf_rms low-pass (estimators.md §7.2).
+    #[arg(long, default_value_t = eyeadapt_color::DEFAULT_SIGMA_S)]
+    pub sigma_s: f64,
 }
 
 #[derive(Args, Debug, Clone)]

@@ -107,6 +107,9 @@ pub fn run(a: SequenceArgs) -> Result<(), Failure> {
         fph,
         out.display()
     );
+    if s.complete && opts.chunk.is_none() && !a.no_report {
+        crate::cmd_report::write_report(&out, &Default::default())?;
+    }
     Ok(())
 }
 

@@ -11,14 +11,15 @@
 //! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
 //!
 //! The temporal side: coherence metrics of a per-frame adaptation-colour series
-//! ([`series_metrics`]) and a causal filter modelling how fast the eye re-adapts
-//! ([`TemporalFilter`], run by [`AdaptationFilter`]).
+//! ([`series_metrics`]) and of the adapted image sequence ([`image_metrics`]), and a causal
+//! filter modelling how fast the eye re-adapts ([`TemporalFilter`], run by [`AdaptationFilter`]).
 
 mod cat;
 mod cct;
 mod degree;
 mod estimators;
 mod hsv;
+mod image_metrics;
 mod lab;
 mod series_metrics;
 mod spaces;
@@ -30,6 +31,12 @@ pub use crate::{
     degree::{DegreeModel, L_A_SRGB, Surround, degree_cie97s, degree_of_adaptation},
     estimators::*,
     hsv::{Hsv, hsv, hsv_of_8bit, hsv_of_linear},
+    image_metrics::{
+        DEFAULT_DE_THRESHOLD, DEFAULT_STRIDE, DEFAULT_Y_PERCENTILE, FrameImageMetrics,
+        GREY_REFLECTANCE, ImageMetrics, ImageMetricsAccumulator, ImageMetricsParams, LabConverter,
+        LabImage, LuminancePercentile, PixelSubset, SequenceFrame, SeriesSummary, delta_e_cat_grey,
+        image_metrics, image_metrics_summary, mean_delta_e, sequence_y_n,
+    },
     lab::{HUE_BRANCH_TOLERANCE_DEG, delta_e_2000, xyz_to_lab},
     series_metrics::{
         DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MetricRow, SeriesError, SeriesMetrics,
@@ -40,8 +47,8 @@ pub use crate::{
         rgb_to_xyz, srgb_decode, srgb_encode, xy_to_uv, xy_to_xyz, xyz_to_rgb, xyz_to_uv,
         xyz_to_xy,
     },
-    temporal_filter::{
-        AdaptationFilter, FilterError, FilterFlags, FilterInit, FilterOutput, FilterParams,
-        TemporalFilter, filter_series, smoothing_factor,
-    },
+};
+pub use temporal_filter::{
+    AdaptationFilter, FilterError, FilterFlags, FilterInit, FilterOutput, FilterParams,
+    TemporalFilter, filter_series, smoothing_factor,
 };

@@ -49,7 +49,7 @@ pub fn load_builtin(name: &str) -> Result<Scene, SceneError> {
 pub fn resolve_scene(spec: &str) -> Result<Scene, SceneError> {
     match spec.strip_prefix("builtin:") {
         Some(name) => load_builtin(name),
-        None => crate::load_scene(Path::new(spec)),
+        None => crate::load_scene_file(Path::new(spec)),
     }
 }
 

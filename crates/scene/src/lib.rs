@@ -13,6 +13,7 @@
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
 //! intensity (radiance × area / distance² behaves as in Mitsuba 3's `rgb` emitters).
 
+mod any;
 mod builtin;
 mod camera;
 mod camera_path;
@@ -22,10 +23,12 @@ mod light;
 mod load;
 mod material;
 mod mesh;
+mod mitsuba;
 mod obj;
 mod shapes;
 mod transform;
 
+pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
@@ -34,6 +37,7 @@ pub use crate::light::Light;
 pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
 pub use crate::material::{Bsdf, Material, MaterialId};
 pub use crate::mesh::Mesh;
+pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::transform::Transform;

@@ -237,6 +237,8 @@ pub fn uv_std_err(mean_rgb: DVec3, cov_rgb: DMat3) -> Option<[f64; 2]> {
 pub struct Reading {
     pub estimator: &'static str,
     pub estimate: Estimate,
+    /// Wall time this estimator took on this frame.
+    pub seconds: f64,
 }
 
 /// Runs the listed estimators on a rendered frame.
@@ -279,6 +281,7 @@ pub fn estimate_all(
     };
     list.iter()
         .map(|&name| {
+            let t = std::time::Instant::now();
             let estimate = match name {
                 "eye" => eye_reading(false),
                 "eye_fov" => eye_reading(true),
@@ -306,6 +309,7 @@ pub fn estimate_all(
             Reading {
                 estimator: name,
                 estimate,
+                seconds: t.elapsed().as_secs_f64(),
             }
         })
         .collect()
@@ -436,6 +440,7 @@ mod tests {
         let r = Reading {
             estimator: "eye",
             estimate: Estimate::new(eyeadapt_color::D65_XYZ * 3.0, 10),
+            seconds: 0.0,
         };
         let row = csv_row(4, 0.5, &r, &[], glam::Vec3::ONE);
         assert_eq!(
@@ -446,6 +451,7 @@ mod tests {
         let bad = Reading {
             estimator: "ncns",
             estimate: Estimate::undefined(eyeadapt_color::flags::NO_WHITE_PIXELS),
+            seconds: 0.0,
         };
         let row = csv_row(4, 0.5, &bad, &["held"], glam::Vec3::ONE);
         assert_eq!(

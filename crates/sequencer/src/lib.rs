@@ -11,6 +11,7 @@ pub mod manifest;
 pub mod merge;
 pub mod output;
 pub mod progress;
+pub mod report;
 pub mod resources;
 pub mod sequence;
 pub mod still;

@@ -306,16 +306,23 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             }
             summary.rendered += 1;
             summary.render_seconds += frame.stats.seconds;
-            let eye = readings
-                .iter()
-                .find(|r| r.estimator == "eye")
-                .and_then(|r| r.estimate.uv());
-            let msg = eye.map_or(String::new(), |uv| {
-                format!("eye u'v' = ({:.4}, {:.4})", uv.x, uv.y)
-            });
+            let total = t.elapsed().as_secs_f64();
+            let msg = match readings.iter().find(|r| r.estimator == "eye") {
+                Some(r) => {
+                    let uv = r.estimate.uv().map_or("undefined".into(), |uv| {
+                        format!("({:.4}, {:.4})", uv.x, uv.y)
+                    });
+                    let share = 100.0 * r.seconds / total.max(1e-9);
+                    format!(
+                        "eye u'v' = {uv}; eye sensor {:.3} s = {share:.1} % of the frame",
+                        r.seconds
+                    )
+                }
+                None => String::new(),
+            };
             progress.frame_done(
                 f,
-                t.elapsed().as_secs_f64(),
+                total,
                 frame.stats.samples as f64 / frame.stats.seconds.max(1e-9),
                 &msg,
             );

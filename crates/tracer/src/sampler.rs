@@ -74,7 +74,7 @@ fn laine_karras(mut x: u32, seed: u32) -> u32 {
     x
 }
 
-#[inline]
+#[cfg(test)]
 fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
     laine_karras(x.reverse_bits(), seed).reverse_bits()
 }
@@ -96,12 +96,13 @@ pub fn hash_key(words: &[u64]) -> u64 {
         .fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w)))
 }
 
-/// Sobol points of the first four dimensions for every byte value of each of the four bytes
-/// of an index: the point of an index is the XOR of four table entries (Sobol is linear over
-/// GF(2) in the index bits). 16 KiB, built at compile time.
-static SOBOL_BYTES: [[[u32; 4]; 256]; 4] = sobol_byte_tables();
+/// Bit-reversed Sobol points of the first four dimensions, indexed by the bytes of the
+/// *bit-reversed* index: `rev(sobol(i)) = XOR_k REV_SOBOL_BYTES[k][byte k of rev(i)]`. Both
+/// maps are linear over GF(2), so working in the reversed domain lets Owen scrambling
+/// (reverse, Laine–Karras, reverse) skip two of its three bit reversals. 16 KiB, const-built.
+static REV_SOBOL_BYTES: [[[u32; 4]; 256]; 4] = rev_sobol_byte_tables();
 
-const fn sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
+const fn rev_sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
     let mut t = [[[0u32; 4]; 256]; 4];
     let mut byte = 0;
     while byte < 4 {
@@ -112,12 +113,13 @@ const fn sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
                 let mut x = 0u32;
                 let mut bit = 0;
                 while bit < 8 {
+                    // Bit `bit` of byte `byte` of rev(i) is bit 31 - (8·byte + bit) of i.
                     if (v >> bit) & 1 == 1 {
-                        x ^= SOBOL[d][byte * 8 + bit];
+                        x ^= SOBOL[d][31 - (byte * 8 + bit)];
                     }
                     bit += 1;
                 }
-                t[byte][v][d] = x;
+                t[byte][v][d] = x.reverse_bits();
                 d += 1;
             }
             v += 1;
@@ -127,16 +129,12 @@ const fn sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
     t
 }
 
-/// The four Sobol dimensions of one index.
+/// The four Sobol dimensions of the index whose bit reversal is `rev_index`, bit-reversed.
 #[inline]
-fn sobol4(index: u32) -> [u32; 4] {
-    let b = index.to_le_bytes();
-    let (t0, t1, t2, t3) = (
-        &SOBOL_BYTES[0][b[0] as usize],
-        &SOBOL_BYTES[1][b[1] as usize],
-        &SOBOL_BYTES[2][b[2] as usize],
-        &SOBOL_BYTES[3][b[3] as usize],
-    );
+fn rev_sobol4(rev_index: u32) -> [u32; 4] {
+    let b = rev_index.to_le_bytes();
+    let t = |k: usize| &REV_SOBOL_BYTES[k][b[k] as usize];
+    let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
     [
         t0[0] ^ t1[0] ^ t2[0] ^ t3[0],
         t0[1] ^ t1[1] ^ t2[1] ^ t3[1],
@@ -154,6 +152,8 @@ pub const LOW_DISCREPANCY_CHUNKS: u32 = 6;
 pub struct SampleStream {
     key: u64,
     index: u32,
+    /// `index.reverse_bits()`, computed once per sample.
+    rev_index: u32,
     dim: u32,
     chunk: u32,
     /// The scrambled values of the current chunk's four dimensions, as Q0.32.
@@ -165,6 +165,7 @@ impl SampleStream {
         let mut s = SampleStream {
             key,
             index,
+            rev_index: index.reverse_bits(),
             dim: 0,
             chunk: u32::MAX,
             values: [0; 4],
@@ -185,12 +186,14 @@ impl SampleStream {
             self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32];
             return;
         }
-        let shuffled = nested_uniform_scramble(self.index, seed as u32);
-        let v = sobol4(shuffled);
+        // Shuffle the index (nested uniform scramble = reverse, Laine-Karras, reverse) and look
+        // the point up, both in the reversed domain; then Owen-scramble each coordinate.
+        let rev_shuffled = laine_karras(self.rev_index, seed as u32);
+        let rv = rev_sobol4(rev_shuffled);
         // Each coordinate needs an independent scramble: seeds that are functions of one
         // another (e.g. affine) make the scrambled point non-uniform in 4-D and bias estimates.
-        for (d, (out, x)) in self.values.iter_mut().zip(v).enumerate() {
-            *out = nested_uniform_scramble(x, mix64(seed ^ ((d as u64 + 1) << 56)) as u32);
+        for (d, (out, x)) in self.values.iter_mut().zip(rv).enumerate() {
+            *out = laine_karras(x, mix64(seed ^ ((d as u64 + 1) << 56)) as u32).reverse_bits();
         }
     }
 
@@ -248,11 +251,37 @@ mod tests {
     }
 
     #[test]
-    fn byte_tables_equal_the_bit_loop() {
+    fn reversed_tables_equal_the_bit_loop() {
         for i in [0u32, 1, 2, 3, 255, 256, 0x1234_5678, u32::MAX, 0x8000_0001] {
             for d in 0..4 {
-                assert_eq!(sobol4(i)[d], sobol(i, d), "index {i} dim {d}");
+                assert_eq!(
+                    rev_sobol4(i.reverse_bits())[d],
+                    sobol(i, d).reverse_bits(),
+                    "index {i} dim {d}"
+                );
             }
+        }
+    }
+
+    #[test]
+    fn reversed_domain_equals_the_textbook_scramble() {
+        // values = nested_uniform_scramble(sobol(nested_uniform_scramble(i, s0), d), s_d)
+        let key = hash_key(&[3, 1, 4]);
+        for i in [0u32, 1, 5, 77, 1023] {
+            let mut st = SampleStream::new(key, i);
+            let got: Vec<f32> = (0..4).map(|_| st.next_1d()).collect();
+            let seed = mix64(key);
+            let shuffled = nested_uniform_scramble(i, seed as u32);
+            let want: Vec<f32> = (0..4)
+                .map(|d| {
+                    let v = nested_uniform_scramble(
+                        sobol(shuffled, d),
+                        mix64(seed ^ ((d as u64 + 1) << 56)) as u32,
+                    );
+                    (v >> 8) as f32 * (1.0 / 16_777_216.0)
+                })
+                .collect();
+            assert_eq!(got, want, "index {i}");
         }
     }
 

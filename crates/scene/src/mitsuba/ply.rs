@@ -1,0 +1,349 @@
+//! Stanford PLY meshes, as Mitsuba's `ply` shape reads them: ASCII or binary little-endian;
+//! vertex positions `x y z`, optional normals `nx ny nz`, polygonal faces (`vertex_indices` or
+//! `vertex_index`, fan-triangulated). Other properties and elements are skipped.
+use glam::Vec3;
+use std::path::Path;
+
+#[derive(Debug)]
+pub(crate) struct PlyMesh {
+    pub positions: Vec<Vec3>,
+    /// Empty unless every vertex has `nx ny nz`.
+    pub normals: Vec<Vec3>,
+    pub indices: Vec<[u32; 3]>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(s: &str) -> Option<Scalar> {
+        Some(match s {
+            "char" | "int8" => Scalar::I8,
+            "uchar" | "uint8" => Scalar::U8,
+            "short" | "int16" => Scalar::I16,
+            "ushort" | "uint16" => Scalar::U16,
+            "int" | "int32" => Scalar::I32,
+            "uint" | "uint32" => Scalar::U32,
+            "float" | "float32" => Scalar::F32,
+            "double" | "float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+}
+
+#[derive(Debug)]
+enum Prop {
+    Scalar(String, Scalar),
+    /// (name, count type, item type)
+    List(String, Scalar, Scalar),
+}
+
+#[derive(Debug)]
+struct Element {
+    name: String,
+    count: usize,
+    props: Vec<Prop>,
+}
+
+/// Sequential reader over the body, in either encoding.
+enum Body<'a> {
+    Ascii(std::str::SplitAsciiWhitespace<'a>),
+    Binary(&'a [u8], usize),
+}
+
+impl Body<'_> {
+    fn read(&mut self, ty: Scalar) -> Result<f64, String> {
+        match self {
+            Body::Ascii(tokens) => {
+                let t = tokens
+                    .next()
+                    .ok_or("the file ends before all elements were read")?;
+                t.parse::<f64>()
+                    .map_err(|_| format!("\"{t}\" is not a number"))
+            }
+            Body::Binary(bytes, pos) => {
+                let n = ty.size();
+                let b = bytes
+                    .get(*pos..*pos + n)
+                    .ok_or("the file ends before all elements were read")?;
+                *pos += n;
+                Ok(match ty {
+                    Scalar::I8 => b[0] as i8 as f64,
+                    Scalar::U8 => b[0] as f64,
+                    Scalar::I16 => i16::from_le_bytes([b[0], b[1]]) as f64,
+                    Scalar::U16 => u16::from_le_bytes([b[0], b[1]]) as f64,
+                    Scalar::I32 => i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+                    Scalar::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+                    Scalar::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+                    Scalar::F64 => f64::from_le_bytes(b.try_into().expect("8 bytes")),
+                })
+            }
+        }
+    }
+}
+
+pub(crate) fn load_ply(path: &Path) -> Result<PlyMesh, String> {
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("cannot read PLY {}: {e}", path.display()))?;
+    parse_ply(&bytes).map_err(|e| format!("PLY {}: {e}", path.display()))
+}
+
+pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
+    const END: &[u8] = b"end_header";
+    let end = bytes
+        .windows(END.len())
+        .position(|w| w == END)
+        .ok_or("no `end_header` line: not a PLY file")?;
+    let mut body_start = end + END.len();
+    // The header ends with its line break (LF or CRLF).
+    if bytes.get(body_start) == Some(&b'\r') {
+        body_start += 1;
+    }
+    if bytes.get(body_start) == Some(&b'\n') {
+        body_start += 1;
+    }
+    let header = std::str::from_utf8(&bytes[..end]).map_err(|_| "the header is not text")?;
+    let mut lines = header.lines().map(str::trim);
+    if lines.next() != Some("ply") {
+        return Err("the file does not start with `ply`".into());
+    }
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    for line in lines {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            [] => {}
+            ["comment", ..] | ["obj_info", ..] => {}
+            ["format", f, _version] => format = Some(f.to_string()),
+            ["element", name, count] => elements.push(Element {
+                name: name.to_string(),
+                count: count
+                    .parse()
+                    .map_err(|_| format!("element {name} has a bad count \"{count}\""))?,
+                props: Vec::new(),
+            }),
+            ["property", "list", ct, it, name] => {
+                let el = elements.last_mut().ok_or("property before any element")?;
+                let ct = Scalar::parse(ct).ok_or(format!("unknown type \"{ct}\""))?;
+                let it = Scalar::parse(it).ok_or(format!("unknown type \"{it}\""))?;
+                el.props.push(Prop::List(name.to_string(), ct, it));
+            }
+            ["property", ty, name] => {
+                let el = elements.last_mut().ok_or("property before any element")?;
+                let ty = Scalar::parse(ty).ok_or(format!("unknown type \"{ty}\""))?;
+                el.props.push(Prop::Scalar(name.to_string(), ty));
+            }
+            _ => return Err(format!("cannot read header line \"{line}\"")),
+        }
+    }
+    let mut body = match format.as_deref() {
+        Some("ascii") => Body::Ascii(
+            std::str::from_utf8(&bytes[body_start..])
+                .map_err(|_| "the ASCII body is not text")?
+                .split_ascii_whitespace(),
+        ),
+        Some("binary_little_endian") => Body::Binary(bytes, body_start),
+        Some("binary_big_endian") => {
+            return Err(
+                "binary_big_endian PLY is not supported (convert it to binary_little_endian or ascii)"
+                    .into(),
+            );
+        }
+        Some(f) => return Err(format!("unknown format \"{f}\"")),
+        None => return Err("no `format` line".into()),
+    };
+    let mut out = PlyMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        indices: Vec::new(),
+    };
+    let mut saw_vertices = false;
+    for el in &elements {
+        match el.name.as_str() {
+            "vertex" => {
+                saw_vertices = true;
+                let find = |n: &str| {
+                    el.props
+                        .iter()
+                        .position(|p| matches!(p, Prop::Scalar(name, _) if name == n))
+                };
+                let pos_idx = ["x", "y", "z"].map(find);
+                if pos_idx.iter().any(Option::is_none) {
+                    return Err("the vertex element lacks x, y or z".into());
+                }
+                let nrm_idx = ["nx", "ny", "nz"].map(find);
+                let has_normals = nrm_idx.iter().all(Option::is_some);
+                out.positions.reserve(el.count);
+                let mut vals = vec![0.0f64; el.props.len()];
+                for _ in 0..el.count {
+                    for (i, p) in el.props.iter().enumerate() {
+                        vals[i] = match p {
+                            Prop::Scalar(_, ty) => body.read(*ty)?,
+                            Prop::List(_, ct, it) => {
+                                let n = body.read(*ct)? as usize;
+                                for _ in 0..n {
+                                    body.read(*it)?;
+                                }
+                                0.0
+                            }
+                        };
+                    }
+                    let p = pos_idx.map(|i| vals[i.expect("checked")] as f32);
+                    let p = Vec3::from_array(p);
+                    if !p.is_finite() {
+                        return Err("a vertex position is not finite".into());
+                    }
+                    out.positions.push(p);
+                    if has_normals {
+                        let n = nrm_idx.map(|i| vals[i.expect("checked")] as f32);
+                        out.normals.push(Vec3::from_array(n).normalize_or_zero());
+                    }
+                }
+            }
+            "face" => {
+                let list = el
+                    .props
+                    .iter()
+                    .position(|p| {
+                        matches!(p, Prop::List(name, _, _) if name == "vertex_indices" || name == "vertex_index")
+                    })
+                    .ok_or("the face element has no vertex_indices list")?;
+                let mut poly = Vec::new();
+                for _ in 0..el.count {
+                    for (i, p) in el.props.iter().enumerate() {
+                        match p {
+                            Prop::Scalar(_, ty) => {
+                                body.read(*ty)?;
+                            }
+                            Prop::List(_, ct, it) => {
+                                let n = body.read(*ct)? as usize;
+                                poly.clear();
+                                for _ in 0..n {
+                                    let v = body.read(*it)?;
+                                    if i == list {
+                                        if v < 0.0 || v.fract() != 0.0 || v >= u32::MAX as f64 {
+                                            return Err(format!("bad vertex index {v}"));
+                                        }
+                                        poly.push(v as u32);
+                                    }
+                                }
+                                if i == list {
+                                    for k in 1..poly.len().saturating_sub(1) {
+                                        out.indices.push([poly[0], poly[k], poly[k + 1]]);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            _ => {
+                for _ in 0..el.count {
+                    for p in &el.props {
+                        match p {
+                            Prop::Scalar(_, ty) => {
+                                body.read(*ty)?;
+                            }
+                            Prop::List(_, ct, it) => {
+                                let n = body.read(*ct)? as usize;
+                                for _ in 0..n {
+                                    body.read(*it)?;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if !saw_vertices {
+        return Err("no vertex element".into());
+    }
+    let n = out.positions.len() as u32;
+    if out.indices.iter().flatten().any(|&i| i >= n) {
+        return Err("a face indexes a vertex that does not exist".into());
+    }
+    if out.indices.is_empty() {
+        return Err("no triangles".into());
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ASCII: &str = "ply
+format ascii 1.0
+comment a unit square in z = 0 and a stray element
+element vertex 4
+property float x
+property float y
+property float z
+property float u
+element face 1
+property list uchar int vertex_indices
+element extra 1
+property list uchar float stuff
+end_header
+0 0 0 0
+1 0 0 1
+1 1 0 1
+0 1 0 0
+4 0 1 2 3
+2 0.5 0.5
+";
+
+    #[test]
+    fn ascii_quad_is_fan_triangulated() {
+        let m = parse_ply(ASCII.as_bytes()).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.indices, vec![[0, 1, 2], [0, 2, 3]]);
+        assert!(m.normals.is_empty());
+    }
+
+    #[test]
+    fn binary_little_endian_with_normals() {
+        let mut b = b"ply\r\nformat binary_little_endian 1.0\r\nelement vertex 3\r\nproperty float x\r\nproperty float y\r\nproperty float z\r\nproperty float nx\r\nproperty float ny\r\nproperty float nz\r\nelement face 1\r\nproperty uchar flags\r\nproperty list uchar uint vertex_index\r\nend_header\r\n".to_vec();
+        for v in [[0.0f32, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]] {
+            for x in v.iter().chain(&[0.0, 0.0, 1.0]) {
+                b.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        b.push(7);
+        b.push(3);
+        for i in [0u32, 1, 2] {
+            b.extend_from_slice(&i.to_le_bytes());
+        }
+        let m = parse_ply(&b).unwrap();
+        assert_eq!(m.positions[1], Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(m.normals.len(), 3);
+        assert_eq!(m.indices, vec![[0, 1, 2]]);
+    }
+
+    #[test]
+    fn truncated_and_big_endian_files_are_errors() {
+        let cut = &ASCII[..ASCII.len() - 20];
+        assert!(parse_ply(cut.as_bytes()).unwrap_err().contains("ends"));
+        let be = ASCII.replace("ascii", "binary_big_endian");
+        assert!(parse_ply(be.as_bytes()).unwrap_err().contains("big_endian"));
+    }
+}

@@ -1,0 +1,504 @@
+//! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
+//! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
+use eyeadapt_scene::{
+    Bsdf, Light, Mesh, Scene, SceneError, load_mitsuba, load_mitsuba_str, load_scene,
+    load_scene_file, mitsuba_vertical_fov,
+};
+use glam::Vec3;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn xml(body: &str) -> String {
+    format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n")
+}
+
+fn load(body: &str) -> Result<Scene, SceneError> {
+    load_mitsuba_str(&xml(body), Path::new("test.xml"), &[])
+}
+
+/// 1-based line of the first occurrence of `needle` in `text`.
+fn line_of(text: &str, needle: &str) -> usize {
+    let i = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("{needle} not in text"));
+    text[..i].matches('\n').count() + 1
+}
+
+/// Total area per material, keyed by what the material is (not its name).
+fn area_by_material(s: &Scene) -> BTreeMap<String, f64> {
+    let mut out = BTreeMap::new();
+    for m in &s.meshes {
+        let mat = s.material(m.material);
+        let key = format!("{:?} emits {:?}", mat.bsdf, mat.emission);
+        *out.entry(key).or_insert(0.0) += m.area();
+    }
+    out
+}
+
+fn triangles(s: &Scene) -> Vec<[f32; 9]> {
+    let mut out: Vec<[f32; 9]> = s
+        .meshes
+        .iter()
+        .flat_map(|m| {
+            m.indices.iter().map(move |t| {
+                let mut v = t.map(|i| m.positions[i as usize].to_array());
+                v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+                let mut flat = [0.0; 9];
+                for (k, p) in v.iter().flatten().enumerate() {
+                    flat[k] = *p;
+                }
+                flat
+            })
+        })
+        .collect();
+    out.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    out
+}
+
+fn emissive_area(s: &Scene) -> f64 {
+    s.meshes
+        .iter()
+        .filter(|m| s.material(m.material).is_emissive())
+        .map(Mesh::area)
+        .sum()
+}
+
+#[test]
+fn cornell_xml_matches_the_toml_camera_render_settings_and_light() {
+    let x = load_scene_file(&repo().join("scenes/cornell-box/cornell.xml")).unwrap();
+    let t = load_scene(&repo().join("scenes/cornell-box/scene.toml")).unwrap();
+    assert!(x.warnings.is_empty(), "{:?}", x.warnings);
+    let (xc, tc) = (x.camera.clone().unwrap(), t.camera.clone().unwrap());
+    assert!(xc.position.distance(tc.position) < 1e-6);
+    assert!(xc.forward().distance(tc.forward()) < 1e-6);
+    assert!(
+        xc.basis().0.distance(tc.basis().0) < 1e-6,
+        "same image right vector"
+    );
+    assert!((xc.fov_deg - tc.fov_deg).abs() < 1e-4);
+    assert_eq!((xc.width, xc.height), (tc.width, tc.height));
+    assert_eq!(x.render, t.render, "spp 64, max_depth 8, rr_depth 5");
+    let (xa, ta) = (emissive_area(&x), emissive_area(&t));
+    assert!(
+        (xa - 0.105 * 0.130).abs() < 1e-7 && (xa - ta).abs() < 1e-7,
+        "{xa} vs {ta}"
+    );
+    let light = |s: &Scene| {
+        s.meshes
+            .iter()
+            .map(|m| s.material(m.material))
+            .find(|m| m.is_emissive())
+            .unwrap()
+            .clone()
+    };
+    assert_eq!(light(&x).emission, light(&t).emission);
+    assert_eq!(light(&x).bsdf, light(&t).bsdf);
+}
+
+#[test]
+fn cornell_xml_and_toml_have_the_same_triangles_per_material() {
+    let x = load_mitsuba(&repo().join("scenes/cornell-box/cornell.xml"), &[]).unwrap();
+    let t = load_scene(&repo().join("scenes/cornell-box/scene.toml")).unwrap();
+    let (xa, ta) = (area_by_material(&x), area_by_material(&t));
+    assert_eq!(xa.keys().collect::<Vec<_>>(), ta.keys().collect::<Vec<_>>());
+    for (k, a) in &xa {
+        assert!(
+            (a - ta[k]).abs() < 1e-6 * a.max(1.0),
+            "{k}: {a} vs {}",
+            ta[k]
+        );
+    }
+    let (xt, tt) = (triangles(&x), triangles(&t));
+    assert_eq!(xt.len(), tt.len());
+    for (a, b) in xt.iter().zip(&tt) {
+        let d = a
+            .iter()
+            .zip(b)
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f32::max);
+        assert!(d < 1e-5, "{a:?} vs {b:?}");
+    }
+    // The XML shares one material per BSDF id; the light got its own emissive one.
+    assert_eq!(x.materials.len(), 4);
+    // Same front sides: the light faces down in both.
+    for s in [&x, &t] {
+        let m = s
+            .meshes
+            .iter()
+            .find(|m| s.material(m.material).is_emissive())
+            .unwrap();
+        let [a, b, c] = m.indices[0].map(|i| m.positions[i as usize]);
+        assert!((b - a).cross(c - a).y < 0.0);
+    }
+}
+
+#[test]
+fn parameters_come_from_defaults_and_caller_overrides() {
+    let path = repo().join("scenes/cornell-box/cornell.xml");
+    let s = load_mitsuba(
+        &path,
+        &[("spp", "256"), ("res", "128"), ("sampler", "ldsampler")],
+    )
+    .unwrap();
+    assert_eq!(s.render.spp, Some(256));
+    assert_eq!(s.camera.unwrap().width, 128);
+    assert_eq!(s.render.max_depth, Some(8), "the file's default stays");
+
+    let text = xml(
+        "<default name=\"r\" value=\"0.25\"/>\n<bsdf type=\"diffuse\" id=\"a\"><rgb name=\"reflectance\" value=\"$r, $r, 0.5\"/></bsdf>\n<shape type=\"cube\"><ref id=\"a\"/></shape>\n<emitter type=\"point\"><rgb name=\"intensity\" value=\"$missing\"/></emitter>",
+    );
+    let e = load_mitsuba_str(&text, Path::new("p.xml"), &[]).unwrap_err();
+    assert_eq!(e.diagnostics.len(), 1, "{e}");
+    let d = &e.diagnostics[0];
+    assert_eq!(d.line, line_of(&text, "$missing"));
+    assert!(d.message.contains("`$missing`"), "{e}");
+    let s = load_mitsuba_str(&text, Path::new("p.xml"), &[("missing", "3")]).unwrap();
+    assert_eq!(
+        s.materials[0].bsdf,
+        Bsdf::Diffuse {
+            reflectance: Vec3::new(0.25, 0.25, 0.5)
+        }
+    );
+    assert!(matches!(s.lights[0], Light::Point { intensity, .. } if intensity == Vec3::splat(3.0)));
+}
+
+fn point_light_at(transform: &str) -> Vec3 {
+    let s = load(&format!(
+        "<emitter type=\"point\"><transform name=\"to_world\">{transform}</transform></emitter>"
+    ))
+    .unwrap();
+    match s.lights[0] {
+        Light::Point { position, .. } => position,
+        _ => unreachable!(),
+    }
+}
+
+#[test]
+fn transform_operations_apply_in_document_order() {
+    // Translate first, then rotate about +y by 90°: (1, 0, 0) → (0, 0, -1).
+    let p = point_light_at("<translate x=\"1\"/><rotate y=\"1\" angle=\"90\"/>");
+    assert!(p.distance(Vec3::new(0.0, 0.0, -1.0)) < 1e-6, "{p}");
+    // The other order leaves the translation alone.
+    let p = point_light_at("<rotate value=\"0, 1, 0\" angle=\"90\"/><translate value=\"1 0 0\"/>");
+    assert!(p.distance(Vec3::X) < 1e-6, "{p}");
+    // Scale after translate scales the offset; before it does not.
+    let p = point_light_at("<translate x=\"1\" y=\"2\"/><scale value=\"3\"/>");
+    assert!(p.distance(Vec3::new(3.0, 6.0, 0.0)) < 1e-6, "{p}");
+    let p = point_light_at("<scale x=\"3\"/><translate x=\"1\" y=\"2\"/>");
+    assert!(p.distance(Vec3::new(1.0, 2.0, 0.0)) < 1e-6, "{p}");
+    // A row-major matrix, then a translation.
+    let p = point_light_at(
+        "<matrix value=\"1 0 0 5  0 1 0 6  0 0 1 7  0 0 0 1\"/><translate z=\"1\"/>",
+    );
+    assert!(p.distance(Vec3::new(5.0, 6.0, 8.0)) < 1e-6, "{p}");
+    // Shapes too: a rectangle scaled, rotated to face +y, then lifted.
+    let s = load(
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"2\"/><rotate x=\"1\" angle=\"-90\"/><translate y=\"1\"/></transform><emitter type=\"area\"/></shape>",
+    )
+    .unwrap();
+    let m = &s.meshes[0];
+    assert!((m.area() - 8.0).abs() < 1e-5);
+    assert!(m.positions.iter().all(|p| (p.y - 1.0).abs() < 1e-6));
+    let [a, b, c] = m.indices[0].map(|i| m.positions[i as usize]);
+    assert!(
+        (b - a).cross(c - a).normalize().distance(Vec3::Y) < 1e-6,
+        "+z turned to +y"
+    );
+    // A mirroring transform keeps the winding, so the front side turns round (as in Mitsuba).
+    let s = load(
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"-1\"/></transform><emitter type=\"area\"/></shape>",
+    )
+    .unwrap();
+    let m = &s.meshes[0];
+    let [a, b, c] = m.indices[0].map(|i| m.positions[i as usize]);
+    assert!((b - a).cross(c - a).normalize().distance(-Vec3::Z) < 1e-6);
+}
+
+#[test]
+fn fov_axis_converts_to_vertical_fov_like_mitsuba() {
+    // (axis, width, height, Mitsuba 3.9's x_fov for fov = 40), from mi.traverse(sensor).
+    let cases = [
+        ("x", 400, 200, 40.0),
+        ("y", 400, 200, 72.10477),
+        ("y", 200, 400, 20.62821),
+        ("diagonal", 400, 200, 36.06479),
+        ("diagonal", 200, 400, 18.49019),
+        ("smaller", 400, 200, 72.10477),
+        ("smaller", 200, 400, 40.0),
+        ("larger", 400, 200, 40.0),
+        ("larger", 200, 400, 20.62821),
+    ];
+    for (axis, w, h, x_fov) in cases {
+        let s = load(&format!(
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/><string name=\"fov_axis\" value=\"{axis}\"/><film type=\"hdrfilm\"><integer name=\"width\" value=\"{w}\"/><integer name=\"height\" value=\"{h}\"/><rfilter type=\"box\"/></film></sensor><emitter type=\"constant\"/>"
+        ))
+        .unwrap();
+        let v = s.camera.unwrap().fov_deg as f64;
+        let x = 2.0
+            * ((v / 2.0).to_radians().tan() * w as f64 / h as f64)
+                .atan()
+                .to_degrees();
+        assert!((x - x_fov).abs() < 1e-3, "{axis} {w}x{h}: {x} vs {x_fov}");
+    }
+    assert!((mitsuba_vertical_fov(40.0, "y", 2.0).unwrap() - 40.0).abs() < 1e-9);
+    assert!(mitsuba_vertical_fov(40.0, "z", 2.0).is_none());
+    // No fov: Mitsuba's 50 mm lens on 36 mm film, 39.6° across x; 768×576 film by default.
+    let s = load("<sensor type=\"perspective\"/><emitter type=\"constant\"/>").unwrap();
+    let c = s.camera.unwrap();
+    assert_eq!((c.width, c.height), (768, 576));
+    let x = 2.0 * ((c.fov_deg as f64 / 2.0).to_radians().tan() * 768.0 / 576.0).atan();
+    assert!((x.to_degrees() - 39.59775).abs() < 1e-3);
+}
+
+#[test]
+fn supported_plugins_load() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("tri.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    )
+    .unwrap();
+    let text = xml(r#"
+    <integrator type="path"><integer name="max_depth" value="-1"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="50"/><float name="near_clip" value="0.1"/><float name="far_clip" value="100"/>
+        <transform name="to_world"><lookat origin="0, 1, 5" target="0, 1, 0" up="0, 1, 0"/></transform>
+        <sampler type="stratified"><integer name="sample_count" value="16"/><integer name="seed" value="7"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="32"/><string name="pixel_format" value="rgb"/><rfilter type="box"/></film>
+    </sensor>
+    <bsdf type="twosided" id="gold"><bsdf type="roughconductor"><string name="material" value="Au"/><float name="alpha" value="0.2"/><string name="distribution" value="ggx"/></bsdf></bsdf>
+    <bsdf type="plastic" id="shiny"><rgb name="diffuse_reflectance" value="0.2, 0.4, 0.6"/><string name="int_ior" value="bk7"/></bsdf>
+    <bsdf type="roughplastic" id="matte"><spectrum name="diffuse_reflectance" value="0.3"/><float name="alpha" value="0.3"/><string name="distribution" value="ggx"/><float name="int_ior" value="1.6"/></bsdf>
+    <shape type="ply"><string name="filename" value="tri.ply"/><ref id="matte"/></shape>
+    <shape type="sphere"><point name="center" x="1" y="2" z="3"/><float name="radius" value="0.5"/><ref id="gold"/></shape>
+    <shape type="cube"><boolean name="flip_normals" value="true"/><ref id="shiny"/></shape>
+    <shape type="sphere"><transform name="to_world"><scale value="0.1"/></transform><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+    <emitter type="spot"><transform name="to_world"><lookat origin="0, 4, 0" target="0, 0, 0" up="1, 0, 0"/></transform><rgb name="intensity" value="10"/><float name="cutoff_angle" value="40"/></emitter>
+    <emitter type="point"><point name="position" value="1, 2, 3"/></emitter>
+    <emitter type="constant"><rgb name="radiance" value="0.1"/></emitter>
+    "#);
+    let s = load_mitsuba_str(&text, &dir.path().join("all.xml"), &[]).unwrap();
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(s.warnings[0].message.contains("smooth coating"));
+    assert_eq!(s.render.spp, Some(16));
+    assert_eq!(s.render.seed, Some(7));
+    assert_eq!(s.render.max_depth, Some(-1));
+    assert_eq!(s.render.rr_depth, Some(5), "Mitsuba's default");
+    assert_eq!(s.meshes.len(), 4);
+    assert_eq!(s.meshes[0].triangle_count(), 1);
+    assert_eq!(
+        s.meshes[0].normals.len(),
+        3,
+        "Mitsuba smooths meshes without normals"
+    );
+    assert!(
+        s.meshes[0]
+            .normals
+            .iter()
+            .all(|n| n.distance(Vec3::Z) < 1e-6)
+    );
+    let sphere = &s.meshes[1];
+    let c = sphere.positions.iter().sum::<Vec3>() / sphere.positions.len() as f32;
+    assert!(c.distance(Vec3::new(1.0, 2.0, 3.0)) < 1e-4);
+    match &s.material(sphere.material).bsdf {
+        Bsdf::Conductor { alpha, eta, .. } => {
+            assert_eq!(*alpha, 0.2);
+            assert!((eta.x - 0.143).abs() < 1e-3, "Mitsuba's Au: {eta}");
+        }
+        b => panic!("{b:?}"),
+    }
+    match &s.material(s.meshes[2].material).bsdf {
+        Bsdf::Plastic { ior, alpha, .. } => {
+            assert!((ior - 1.5046 / 1.000277).abs() < 1e-5);
+            assert_eq!(*alpha, 0.01);
+        }
+        b => panic!("{b:?}"),
+    }
+    // flip_normals turns the cube's faces inwards.
+    let cube = &s.meshes[2];
+    let [a, b, c] = cube.indices[0].map(|i| cube.positions[i as usize]);
+    assert!((b - a).cross(c - a).dot((a + b + c) / 3.0) < 0.0);
+    let lamp = s.material(s.meshes[3].material);
+    assert_eq!(lamp.emission, Vec3::new(1.0, 2.0, 3.0));
+    assert_eq!(
+        lamp.bsdf,
+        Bsdf::Diffuse {
+            reflectance: Vec3::splat(0.5)
+        },
+        "Mitsuba's default BSDF"
+    );
+    match s.lights[0] {
+        Light::Spot {
+            position,
+            direction,
+            cone_deg,
+            falloff_deg,
+            ..
+        } => {
+            assert_eq!(position, Vec3::new(0.0, 4.0, 0.0));
+            assert!(direction.distance(-Vec3::Y) < 1e-6);
+            assert_eq!((cone_deg, falloff_deg), (40.0, 30.0));
+        }
+        _ => panic!(),
+    }
+    assert_eq!(s.environment, Some(Vec3::splat(0.1)));
+    let cam = s.camera.unwrap();
+    assert!((cam.fov_deg as f64 - mitsuba_vertical_fov(50.0, "x", 2.0).unwrap()).abs() < 1e-4);
+}
+
+#[test]
+fn approximations_are_warnings() {
+    let s = load(
+        "<shape type=\"cube\"><bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.4\"/></bsdf></shape><emitter type=\"constant\"/><sensor type=\"perspective\"><film type=\"hdrfilm\"/></sensor>",
+    )
+    .unwrap();
+    let all: Vec<String> = s.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(all.len(), 3, "{all:#?}");
+    assert!(all.iter().any(|w| w.contains("anisotropic")));
+    assert!(all.iter().any(|w| w.contains("Beckmann")));
+    assert!(all.iter().any(|w| w.contains("Gaussian")));
+}
+
+/// Loads a fixture of `scenes/mitsuba-unsupported/` and checks that each `(needle, words)`
+/// has an error on the needle's line that mentions every word.
+fn expect_errors(file: &str, expected: &[(&str, &[&str])]) {
+    let path = repo().join("scenes/mitsuba-unsupported").join(file);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let e = load_scene_file(&path).expect_err(file);
+    let errors: Vec<_> = e
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == eyeadapt_scene::Severity::Error)
+        .collect();
+    for (needle, words) in expected {
+        let line = line_of(&text, needle);
+        let hit = errors
+            .iter()
+            .find(|d| d.line == line && words.iter().all(|w| d.message.contains(w)));
+        assert!(
+            hit.is_some(),
+            "{file}: no error on line {line} mentioning {words:?}; got:\n{e}"
+        );
+        let d = hit.unwrap();
+        assert!(d.col > 0);
+        assert!(
+            d.to_string()
+                .starts_with(&format!("{}:{line}:", path.display()))
+        );
+    }
+    assert_eq!(
+        errors.len(),
+        expected.len(),
+        "{file}: unexpected extra errors:\n{e}"
+    );
+}
+
+#[test]
+fn bitmap_texture_is_reported_at_the_texture() {
+    expect_errors(
+        "textured-floor.xml",
+        &[(
+            "<texture type=\"bitmap\"",
+            &["<texture type=\"bitmap\">", "unsupported"],
+        )],
+    );
+}
+
+#[test]
+fn dielectric_is_reported_at_its_bsdf() {
+    expect_errors(
+        "glass-on-table.xml",
+        &[(
+            "<bsdf type=\"dielectric\"",
+            &["<bsdf type=\"dielectric\" id=\"glass\">", "unsupported"],
+        )],
+    );
+}
+
+#[test]
+fn envmap_is_reported_at_its_emitter() {
+    expect_errors(
+        "sky-envmap.xml",
+        &[(
+            "<emitter type=\"envmap\"",
+            &["<emitter type=\"envmap\">", "unsupported"],
+        )],
+    );
+}
+
+#[test]
+fn include_and_thindielectric_are_both_reported() {
+    expect_errors(
+        "window-include.xml",
+        &[
+            (
+                "<include",
+                &["<include filename=\"window-include-materials.xml\">"],
+            ),
+            (
+                "<bsdf type=\"thindielectric\"",
+                &["<bsdf type=\"thindielectric\" id=\"window-glass\">"],
+            ),
+        ],
+    );
+}
+
+#[test]
+fn every_problem_of_a_file_is_reported_at_once() {
+    expect_errors(
+        "hair-and-spectra.xml",
+        &[
+            (
+                "focus_distance",
+                &["<float name=\"focus_distance\">", "perspective"],
+            ),
+            (
+                "<rfilter type=\"gaussian\"",
+                &["<rfilter type=\"gaussian\">", "box"],
+            ),
+            (
+                "<shape type=\"hair\"",
+                &["<shape type=\"hair\">", "unsupported"],
+            ),
+            ("head.ply", &["head.ply"]),
+            (
+                "400:0.31",
+                &["<spectrum name=\"reflectance\">", "wavelength"],
+            ),
+            (
+                "\"roughness\"",
+                &["<float name=\"roughness\">", "<bsdf type=\"plastic\">"],
+            ),
+        ],
+    );
+}
+
+#[test]
+fn unknown_elements_attributes_and_references_are_located() {
+    let text = xml(
+        "<shape type=\"cube\" colour=\"red\">\n<ref id=\"nowhere\"/>\n</shape>\n<medium type=\"homogeneous\"/>\n<lamp/>\n<emitter type=\"area\"/>\n<bsdf type=\"diffuse\"><texture type=\"checkerboard\" name=\"reflectance\"/></bsdf>",
+    );
+    let e = load_mitsuba_str(&text, Path::new("u.xml"), &[]).unwrap_err();
+    let lines: Vec<(usize, &str)> = e
+        .diagnostics
+        .iter()
+        .map(|d| (d.line, d.message.as_str()))
+        .collect();
+    let has = |needle: &str, word: &str| {
+        let l = line_of(&text, needle);
+        assert!(
+            lines.iter().any(|(dl, m)| *dl == l && m.contains(word)),
+            "{needle}/{word}: {e}"
+        );
+    };
+    has("colour=", "`colour`");
+    has("nowhere", "nowhere");
+    has("<medium", "<medium type=\"homogeneous\">");
+    has("<lamp", "<lamp>");
+    has("<emitter type=\"area\"", "nested in a <shape>");
+    has("checkerboard", "<texture type=\"checkerboard\">");
+}

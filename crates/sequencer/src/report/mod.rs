@@ -1,0 +1,292 @@
+//! `eyeadapt report DIR`: temporal-coherence metrics, filtered series, plots and an HTML page
+//! for a sequence output directory (estimators.md §7–§8; what everything means: docs/report.md).
+//!
+//! Steps:
+//! 1. read `manifest.json` and `adaptation.csv`; rows whose estimator contains `+` were derived
+//!    by an earlier report and are dropped (and recomputed);
+//! 2. apply the job's temporal filters (`settings["temporal_filters"]`) to every estimator's
+//!    series, and rewrite `adaptation.csv` atomically: the committed frames' rows first, as
+//!    they were, then the derived rows `<estimator>+<preset>` (same columns);
+//! 3. §7.2 metrics of every series (raw and filtered), and §7.3 metrics of the adapted image
+//!    sequence, reading the raw EXRs (CAT from the logged whites with the job's `cat` and
+//!    `degree`; undefined whites adapt with D65, as the sequencer does);
+//! 4. write `coherence.csv`, `coherence_frames.csv`, `plots/*.svg` and `report.html`;
+//! 5. with `--video`, encode `video/*.mp4` with ffmpeg when it is on PATH.
+//!
+//! The directory is locked like a sequence run, so a report never races a render writing
+//! the same CSV. Running the report twice gives the same files.
+mod coherence;
+mod html;
+pub mod locus;
+mod plots;
+mod series;
+mod table;
+mod video;
+
+pub use coherence::{EstimatorReport, Metric};
+pub use series::{Point, Series};
+pub use video::{VideoOutcome, label_strip};
+
+use crate::adapt::AdaptationSettings;
+use crate::error::Failure;
+use crate::manifest::{CSV, Manifest};
+use crate::output::atomic_write_bytes;
+use crate::sequence::lock_dir;
+use eyeadapt_color::{Cat, DEFAULT_SIGMA_S, DEFAULT_STRIDE};
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// What `report` does besides the metrics.
+#[derive(Clone, Debug)]
+pub struct ReportOptions {
+    /// Encode movies with ffmpeg.
+    pub video: bool,
+    /// σ of the Gaussian in `hf_rms`, seconds.
+    pub sigma_s: f64,
+    /// The ffmpeg program (looked up on PATH unless it is a path).
+    pub ffmpeg: PathBuf,
+}
+
+impl Default for ReportOptions {
+    fn default() -> Self {
+        ReportOptions {
+            video: false,
+            sigma_s: DEFAULT_SIGMA_S,
+            ffmpeg: PathBuf::from("ffmpeg"),
+        }
+    }
+}
+
+/// What `report` wrote.
+#[derive(Clone, Debug)]
+pub struct ReportSummary {
+    /// Every series measured, raw then filtered.
+    pub estimators: Vec<String>,
+    pub frames: usize,
+    /// Rows appended to adaptation.csv for the filtered series.
+    pub derived_rows: usize,
+    /// Lab white luminance of the image metrics; `None` when they were not computed.
+    pub y_n: Option<f64>,
+    /// Files written (report.html, CSVs, plots), relative to the directory.
+    pub files: Vec<String>,
+    /// Things the user should know (skipped parts, dropped rows).
+    pub notes: Vec<String>,
+    pub video: VideoOutcome,
+    /// The measured metrics, one per series.
+    pub reports: Vec<EstimatorReport>,
+}
+
+fn adaptation_of(m: &Manifest) -> Result<AdaptationSettings, Failure> {
+    let d = AdaptationSettings::default();
+    let cat = match m.settings.get("cat") {
+        Some(c) => c
+            .parse::<Cat>()
+            .map_err(|e| Failure::Input(format!("manifest setting cat: {e}")))?,
+        None => d.cat,
+    };
+    let degree = match m.settings.get("degree") {
+        Some(s) => s
+            .parse::<f64>()
+            .ok()
+            .filter(|v| (0.0..=1.0).contains(v))
+            .ok_or_else(|| {
+                Failure::Input(format!("manifest setting degree {s:?} is not in [0, 1]"))
+            })?,
+        None => d.degree,
+    };
+    Ok(AdaptationSettings { cat, degree })
+}
+
+/// Computes the coherence report of the sequence in `dir`.
+pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure> {
+    if !(opts.sigma_s.is_finite() && opts.sigma_s >= 0.0) {
+        return Err(Failure::Input(format!(
+            "--sigma-s {} must be a number of seconds >= 0",
+            opts.sigma_s
+        )));
+    }
+    let m = Manifest::load(dir)?.ok_or_else(|| {
+        Failure::Input(format!(
+            "{}: no manifest.json (not an eyeadapt sequence output)",
+            dir.display()
+        ))
+    })?;
+    if m.frames.is_empty() {
+        return Err(Failure::Input(format!(
+            "{}: no committed frames to report on",
+            dir.display()
+        )));
+    }
+    if !(m.fps.is_finite() && m.fps > 0.0) {
+        return Err(Failure::Input(format!(
+            "manifest fps {} is not positive",
+            m.fps
+        )));
+    }
+    let _lock = lock_dir(dir)?;
+    let adaptation = adaptation_of(&m)?;
+    let presets = series::presets(&m)?;
+    let mut notes = Vec::new();
+
+    // 1. The CSV.
+    let csv_path = dir.join(CSV);
+    let text = std::fs::read_to_string(&csv_path)
+        .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
+    let committed: BTreeSet<u32> = m.frames.keys().copied().collect();
+    let tab = table::parse(&text, &csv_path, &committed)?;
+    if tab.dropped_uncommitted > 0 {
+        notes.push(format!(
+            "{} row(s) of frames not committed in the manifest were left out",
+            tab.dropped_uncommitted
+        ));
+    }
+    if tab.dropped_duplicates > 0 {
+        notes.push(format!(
+            "{} duplicate row(s) (same frame and estimator) were left out; the first one counts",
+            tab.dropped_duplicates
+        ));
+    }
+    let base = series::base_series(&m, &tab);
+    for s in &base {
+        let n = s.points.iter().filter(|p| p.white.is_some()).count();
+        if n < s.points.len() {
+            notes.push(format!(
+                "{}: {} of {} frame(s) have no defined white (adapted with D65; they split the series)",
+                s.name,
+                s.points.len() - n,
+                s.points.len()
+            ));
+        }
+    }
+
+    // 2. Filters, and the CSV rewritten with the derived rows.
+    let mut all = base.clone();
+    let mut derived: Vec<(u32, usize, String)> = Vec::new();
+    for f in &presets {
+        for s in &base {
+            let (fs, rows) = series::filtered(s, *f, &tab)?;
+            let order = all.len();
+            derived.extend(rows.into_iter().map(|(frame, r)| (frame, order, r)));
+            all.push(fs);
+        }
+    }
+    derived.sort_by_key(|(frame, order, _)| (*frame, *order));
+    let mut csv = String::with_capacity(text.len() + derived.len() * 200);
+    csv.push_str(crate::adapt::CSV_HEADER);
+    csv.push('\n');
+    for r in &tab.rows {
+        csv.push_str(&r.line);
+        csv.push('\n');
+    }
+    for (_, _, r) in &derived {
+        csv.push_str(r);
+    }
+    if csv != text {
+        atomic_write_bytes(&csv_path, csv.as_bytes())?;
+    }
+
+    // 3. Metrics.
+    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE)?;
+    let image = match image {
+        Ok(p) => Some(p),
+        Err(why) => {
+            notes.push(format!("image metrics (§7.3) not computed: {why}"));
+            None
+        }
+    };
+    let mut reports = Vec::with_capacity(all.len());
+    for (k, s) in all.iter().enumerate() {
+        reports.push(EstimatorReport {
+            name: s.name.clone(),
+            base: s.base.clone(),
+            filter: s.filter.clone(),
+            series: series::metrics_of(s, m.fps, opts.sigma_s)?,
+            image: image.as_ref().map(|p| p.metrics[k].clone()),
+            steps: series::steps(s),
+        });
+    }
+
+    // 4. Files.
+    let mut files = Vec::new();
+    let mut put = |rel: &str, bytes: &[u8]| -> Result<(), Failure> {
+        atomic_write_bytes(&dir.join(rel), bytes)?;
+        files.push(rel.to_string());
+        Ok(())
+    };
+    put(
+        "coherence.csv",
+        coherence::coherence_csv(&reports).as_bytes(),
+    )?;
+    put(
+        "coherence_frames.csv",
+        coherence::frames_csv(&all, &reports).as_bytes(),
+    )?;
+    let mut groups: Vec<(String, String, Option<String>)> =
+        vec![(String::new(), "per-frame estimates".into(), None)];
+    for f in &presets {
+        groups.push((
+            format!("_{f}"),
+            format!("with the {f} temporal filter"),
+            Some(f.to_string()),
+        ));
+    }
+    let mut svgs: Vec<(String, String)> = Vec::new();
+    for (suffix, what, filter) in &groups {
+        let idx: Vec<usize> = (0..all.len())
+            .filter(|&k| all[k].filter == *filter)
+            .collect();
+        let group: Vec<&Series> = idx.iter().map(|&k| &all[k]).collect();
+        let reps: Vec<&EstimatorReport> = idx.iter().map(|&k| &reports[k]).collect();
+        let mut plot = |name: &str, title: String, svg: String| -> Result<(), Failure> {
+            put(&format!("plots/{name}{suffix}.svg"), svg.as_bytes())?;
+            svgs.push((title, svg));
+            Ok(())
+        };
+        let t = format!("Adaptation colour per frame, {what} (Fig. 14 analogue)");
+        plot(
+            "adaptation",
+            t.clone(),
+            plots::adaptation_plot(&group, &t, m.fps)?,
+        )?;
+        let t = format!("u′v′ trajectories, {what} (Fig. 11 analogue)");
+        plot(
+            "chromaticity",
+            t.clone(),
+            plots::chromaticity_plot(&group, &t)?,
+        )?;
+        let t = format!("Frame-to-frame Δu′v′, {what}");
+        plot("steps", t.clone(), plots::steps_plot(&group, &reps, &t)?)?;
+        if image.is_some() {
+            let t = format!("dE_cat per frame, {what}");
+            plot("de_cat", t.clone(), plots::de_cat_plot(&group, &reps, &t)?)?;
+        }
+    }
+    let page = html::page(&html::Page {
+        manifest: &m,
+        reports: &reports,
+        plots: &svgs,
+        notes: &notes,
+        y_n: image.as_ref().map(|p| p.y_n),
+        omega: image.as_ref().map(|p| (p.width, p.height, p.omega_pixels)),
+        sigma_s: opts.sigma_s,
+    });
+    put("report.html", page.as_bytes())?;
+
+    // 5. Video.
+    let video = if opts.video {
+        video::videos(dir, &m, &opts.ffmpeg)?
+    } else {
+        VideoOutcome::NotRequested
+    };
+
+    Ok(ReportSummary {
+        estimators: all.iter().map(|s| s.name.clone()).collect(),
+        frames: m.frames.len(),
+        derived_rows: derived.len(),
+        y_n: image.as_ref().map(|p| p.y_n),
+        files,
+        notes,
+        video,
+        reports,
+    })
+}
