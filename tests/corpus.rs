@@ -637,10 +637,11 @@ mod checks;
 
 #[test]
 fn fuzz_regressions_no_longer_crash() {
-    let targets: [(&str, fn(&[u8])); 3] = [
+    let targets: [(&str, fn(&[u8])); 4] = [
         ("scene_toml", checks::scene_toml),
         ("obj", checks::obj),
         ("frame_spec", checks::frame_spec),
+        ("mitsuba_xml", checks::mitsuba_xml),
     ];
     let mut ran = 0;
     let mut crashed = Vec::new();

@@ -2,7 +2,7 @@
 //! feeds every input kept in `tests/corpus/fuzz-regressions/TARGET/` to the same function in a
 //! normal `cargo test` (so it depends on nothing but the eyeadapt crates).
 #![allow(dead_code)]
-use eyeadapt_scene::{Rgb as Vec3, Scene, load_obj_bytes};
+use eyeadapt_scene::{Bsdf, Light, Rgb as Vec3, Scene, check_colour, load_obj_bytes};
 use eyeadapt_sequencer::{FrameSet, MAX_FRAMES, chunk, chunk_count};
 use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View, render};
 use std::path::Path;
@@ -26,11 +26,67 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
         }
     }
     for mat in &scene.materials {
-        let e = mat.emission;
         assert!(
-            e.is_finite() && e.min_element() >= 0.0,
-            "bad emission accepted: {e:?}"
+            check_colour(mat.emission).is_ok(),
+            "bad emission accepted: {mat:?}"
         );
+        let ok = match &mat.bsdf {
+            Bsdf::Diffuse { reflectance } => check_colour(*reflectance).is_ok(),
+            Bsdf::Conductor {
+                alpha,
+                eta,
+                k,
+                specular_reflectance,
+            } => {
+                alpha.is_finite()
+                    && check_colour(*eta).is_ok()
+                    && check_colour(*k).is_ok()
+                    && check_colour(*specular_reflectance).is_ok()
+            }
+            Bsdf::Plastic {
+                reflectance,
+                alpha,
+                ior,
+            } => check_colour(*reflectance).is_ok() && alpha.is_finite() && ior.is_finite(),
+        };
+        assert!(ok, "bad material accepted: {mat:?}");
+    }
+    if let Some(c) = &scene.camera {
+        assert!(
+            c.position.is_finite() && c.look_at.is_finite() && c.up.is_finite(),
+            "non-finite camera accepted: {c:?}"
+        );
+        assert!(
+            c.fov_deg > 0.0 && c.fov_deg < 180.0,
+            "bad fov accepted: {c:?}"
+        );
+        assert!(c.width >= 1 && c.height >= 1, "empty image accepted: {c:?}");
+        assert!(c.forward().is_finite(), "no view direction accepted: {c:?}");
+    }
+    for l in &scene.lights {
+        let ok = match l {
+            Light::Point {
+                position,
+                intensity,
+            } => position.is_finite() && check_colour(*intensity).is_ok(),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cone_deg,
+                falloff_deg,
+            } => {
+                position.is_finite()
+                    && direction.is_finite()
+                    && check_colour(*intensity).is_ok()
+                    && cone_deg.is_finite()
+                    && falloff_deg.is_finite()
+            }
+        };
+        assert!(ok, "bad light accepted: {l:?}");
+    }
+    if let Some(e) = scene.environment {
+        assert!(check_colour(e).is_ok(), "bad environment accepted: {e:?}");
     }
     if scene.triangle_count() > max_triangles {
         return;
@@ -145,7 +201,13 @@ pub fn frame_spec(data: &[u8]) {
             let shown = set.to_string();
             let back: FrameSet = shown.parse().expect("Display output must parse");
             assert_eq!(back, set, "round trip through {shown:?}");
-            for size in [1usize, 7, 1000] {
+            // Chunking is linear in the set; keep executions fast on million-frame specs.
+            let sizes: &[usize] = if s.len() <= 10_000 {
+                &[1, 7, 1000]
+            } else {
+                &[]
+            };
+            for &size in sizes {
                 let n = chunk_count(s.len(), size).unwrap();
                 let mut joined = Vec::new();
                 for i in 0..n {
@@ -158,6 +220,41 @@ pub fn frame_spec(data: &[u8]) {
         Err(e) => {
             assert!(e.column >= 1 && e.column <= text.chars().count() + 1, "{e}");
             let _ = e.to_string();
+        }
+    }
+}
+
+/// `mitsuba_xml`: the Mitsuba 3 XML loader (`load_mitsuba_str`) on arbitrary text returns a
+/// scene or located diagnostics, never panics; accepted scenes build and render. Bytes after
+/// the first NUL become `mesh.ply` next to the scene, so `<string name="filename"
+/// value="mesh.ply"/>` reaches the PLY reader too.
+pub fn mitsuba_xml(data: &[u8]) {
+    let (xml, ply) = match data.iter().position(|&b| b == 0) {
+        Some(i) => (&data[..i], Some(&data[i + 1..])),
+        None => (data, None),
+    };
+    let Ok(text) = std::str::from_utf8(xml) else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("eyeadapt-fuzz-xml-{}", std::process::id()));
+    let mesh = dir.join("mesh.ply");
+    match ply {
+        Some(bytes) => {
+            std::fs::create_dir_all(&dir).unwrap();
+            std::fs::write(&mesh, bytes).unwrap();
+        }
+        None => {
+            let _ = std::fs::remove_file(&mesh);
+        }
+    }
+    match eyeadapt_scene::load_mitsuba_str(text, &dir.join("scene.xml"), &[]) {
+        Ok(scene) => check_accepted_scene(&scene, 5_000),
+        Err(e) => {
+            assert!(!e.diagnostics.is_empty());
+            for d in &e.diagnostics {
+                assert!(d.line <= text.lines().count() + 1, "{d}");
+                let _ = d.to_string();
+            }
         }
     }
 }
