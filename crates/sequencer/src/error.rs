@@ -35,6 +35,8 @@ impl Failure {
         // EROFS 30
         match e.raw_os_error() {
             Some(28 | 122 | 5 | 11 | 4 | 116 | 110 | 16 | 30) => Failure::Transient(msg),
+            // Content that is not what it must be (a CSV that is not UTF-8): bad input.
+            _ if e.kind() == io::ErrorKind::InvalidData => Failure::Input(msg),
             _ => match e.kind() {
                 io::ErrorKind::StorageFull
                 | io::ErrorKind::Interrupted
