@@ -10,6 +10,7 @@
 //! | `frames/` | `NAME.spec` | `eyeadapt sequence --frames SPEC` into the same directory |
 //! | `merge/` | `NAME/` (a chunk output) | `eyeadapt merge GOOD_CHUNK CASE` into a good merge |
 //! | `xml/` | `NAME.xml` | `eyeadapt render CASE` (Mitsuba 3 XML) into the good render |
+//! | `report/` | `NAME.csv` / `NAME.manifest` | `eyeadapt report` of a good sequence with that CSV / manifest patch |
 //! | `fuzz-regressions/` | inputs the fuzzers once crashed on | see `fuzz_regressions` below |
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -181,6 +182,19 @@ fn cases(dir: &str, ext: &str) -> Vec<(String, PathBuf, Expected)> {
     out
 }
 
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let p = e.unwrap().path();
+        let dst = to.join(p.file_name().unwrap());
+        if p.is_dir() {
+            copy_dir(&p, &dst);
+        } else {
+            std::fs::copy(&p, &dst).unwrap();
+        }
+    }
+}
+
 /// Replaces `@NAME@` placeholders in every file of a copied merge case.
 fn instantiate(src: &Path, dst: &Path, vars: &[(&str, String)]) {
     std::fs::create_dir_all(dst).unwrap();
@@ -333,6 +347,45 @@ fn every_malformed_input_exits_2_with_its_location_and_leaves_outputs_alone() {
         };
         let (code, err) = run(cmd.arg("--out").arg(&merge_out));
         outcomes.push(check(&case, code, &err, &x));
+    }
+
+    // Report: a copy of the good sequence, reported once (so its report files exist), then
+    // per case a fresh copy with a broken adaptation.csv (`NAME.csv`) or a patched
+    // manifest.json (`NAME.manifest`: lines `FROM => TO`). The failed report must change
+    // nothing in it.
+    let report_good = root.join("report-good");
+    copy_dir(&seq_out, &report_good);
+    must(eyeadapt().arg("report").arg(&report_good));
+    let mut report_cases = cases("report", "csv");
+    report_cases.extend(cases("report", "manifest"));
+    for (case, path, x) in report_cases {
+        let dir = root.join("report-cases").join(path.file_name().unwrap());
+        copy_dir(&report_good, &dir);
+        if path.extension().is_some_and(|e| e == "csv") {
+            std::fs::copy(&path, dir.join("adaptation.csv")).unwrap();
+        } else {
+            let mut m = std::fs::read_to_string(dir.join("manifest.json")).unwrap();
+            for l in std::fs::read_to_string(&path).unwrap().lines() {
+                let (from, to) = l.split_once(" => ").unwrap();
+                assert!(m.contains(from), "{case}: {from:?} not in the manifest");
+                m = m.replace(from, to);
+            }
+            std::fs::write(dir.join("manifest.json"), m).unwrap();
+        }
+        let before = snapshot(&dir);
+        let (code, err) = run(eyeadapt().arg("report").arg(&dir));
+        let mut o = check(&case, code, &err, &x);
+        let after = snapshot(&dir);
+        let changed: Vec<&String> = before
+            .keys()
+            .chain(after.keys())
+            .filter(|k| before.get(*k) != after.get(*k) && !k.ends_with(".eyeadapt.lock"))
+            .collect();
+        if !changed.is_empty() {
+            o.problems
+                .push(format!("the failed report changed {changed:?}"));
+        }
+        outcomes.push(o);
     }
 
     let after = [&render_out, &seq_out, &merge_out, &chunk0].map(|d| snapshot(d));
