@@ -235,7 +235,8 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
                 o.out.display(),
                 m.job_name,
                 m.job_source,
-                &m.job_hash[..12],
+                // The old manifest is input: its hash may be short or not even ASCII.
+                m.job_hash.get(..12).unwrap_or(&m.job_hash),
                 &job.hash[..12]
             )));
         }
