@@ -690,7 +690,8 @@ mod checks;
 
 #[test]
 fn fuzz_regressions_no_longer_crash() {
-    let targets: [(&str, fn(&[u8])); 4] = [
+    type Check = fn(&[u8]);
+    let targets: [(&str, Check); 4] = [
         ("scene_toml", checks::scene_toml),
         ("obj", checks::obj),
         ("frame_spec", checks::frame_spec),

@@ -196,7 +196,7 @@ fn twenty_kills_at_random_moments_resume_to_identical_outputs() {
                 .stderr(Stdio::null())
                 .spawn()
                 .unwrap();
-            let when = if rng.next() % 2 == 0 {
+            let when = if rng.next().is_multiple_of(2) {
                 // By the clock: anywhere from process start to the end of a run.
                 let delay = full.mul_f64(0.02 + 0.93 * rng.unit());
                 std::thread::sleep(delay);
