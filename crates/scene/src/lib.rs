@@ -38,8 +38,30 @@ pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
 pub use crate::material::{Bsdf, Material, MaterialId};
 pub use crate::mesh::Mesh;
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
+pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::transform::Transform;
 
 /// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).
 pub type Rgb = glam::Vec3;
+
+/// Largest colour component any loader accepts (emission, environment radiance, intensity,
+/// reflectance, IOR). Far beyond any radiance in scene units; above it the tracer's light
+/// powers (π · area · luminance, in single precision) overflow, and an area light whose power
+/// is infinite silently drops out of light sampling.
+pub const MAX_COLOUR: f32 = 1e15;
+
+/// Why a colour is unusable, if it is: NaN or infinite, negative, or above [`MAX_COLOUR`].
+pub fn check_colour(c: Rgb) -> Result<(), String> {
+    if !c.is_finite() {
+        Err("has a non-finite component".into())
+    } else if c.min_element() < 0.0 {
+        Err("has a negative component".into())
+    } else if c.max_element() > MAX_COLOUR {
+        Err(format!(
+            "has a component above {MAX_COLOUR:e}: beyond any radiance, and light powers would overflow"
+        ))
+    } else {
+        Ok(())
+    }
+}

@@ -133,13 +133,13 @@ impl Ctx<'_> {
         Vec3::from_array(a)
     }
 
-    /// A finite, non-negative colour.
+    /// A finite, non-negative colour no larger than [`crate::MAX_COLOUR`].
     fn colour(&mut self, v: &V3, what: &str) -> Rgb {
         let c = self.vec3(v, what);
-        if c.min_element() < 0.0 {
+        if let Err(problem) = crate::check_colour(c) {
             self.error(
                 v.span().start,
-                format!("{what} {c:?} has a negative component"),
+                format!("{what} {:?} {problem}", c.to_array()),
             );
             return Rgb::ZERO;
         }

@@ -3,7 +3,9 @@ use crate::{Bsdf, Material, MaterialId, Mesh, Rgb};
 use glam::Vec3;
 use std::path::Path;
 
-pub(crate) struct LoadedObj {
+/// The triangles and materials of one OBJ file.
+#[derive(Clone, Debug)]
+pub struct LoadedObj {
     pub meshes: Vec<Mesh>,
     /// Per mesh: the MTL material, or `None` for the error material.
     pub materials: Vec<Option<Material>>,
@@ -21,8 +23,147 @@ pub(crate) fn load_obj(
             path.display()
         ));
     }
-    let (models, mtls) = tobj::load_obj(path, &tobj::GPU_LOAD_OPTIONS)
-        .map_err(|e| format!("cannot load OBJ {}: {e}", path.display()))?;
+    // The text is only read again to point at the offending line of a failed load.
+    let text = || std::fs::read(path).unwrap_or_default();
+    let (models, mtls) = tobj::load_obj(path, &tobj::GPU_LOAD_OPTIONS).map_err(|e| {
+        format!(
+            "cannot load OBJ {}: {e}",
+            at_line(path, &text(), Problem::Load(&e))
+        )
+    })?;
+    convert(path, models, mtls, override_material).map_err(|e| e.located(path, &text()))
+}
+
+/// The same validation as a scene's `type = "obj"` shape, on an OBJ (and optionally its MTL)
+/// held in memory; every `mtllib` resolves to `mtl`. `name` only labels messages. For fuzzing
+/// and tests: the scene loader itself reads files with [`crate::load_scene`].
+pub fn load_obj_bytes(obj: &[u8], mtl: Option<&[u8]>, name: &Path) -> Result<LoadedObj, String> {
+    let (models, mtls) =
+        tobj::load_obj_buf(&mut &obj[..], &tobj::GPU_LOAD_OPTIONS, |_| match mtl {
+            Some(bytes) => tobj::load_mtl_buf(&mut &bytes[..]),
+            None => Err(tobj::LoadError::OpenFileFailed),
+        })
+        .map_err(|e| {
+            format!(
+                "cannot load OBJ {}: {e}",
+                at_line(name, obj, Problem::Load(&e))
+            )
+        })?;
+    convert(name, models, mtls, None).map_err(|e| e.located(name, obj))
+}
+
+/// A problem `convert` found, before the OBJ line it comes from is looked up.
+enum ConvertError {
+    NonFiniteVertex(String),
+    Other(String),
+}
+
+impl ConvertError {
+    fn located(self, path: &Path, text: &[u8]) -> String {
+        match self {
+            ConvertError::NonFiniteVertex(model) => format!(
+                "OBJ {}: model \"{model}\" has a non-finite vertex",
+                at_line(path, text, Problem::NonFiniteVertex)
+            ),
+            ConvertError::Other(m) => m,
+        }
+    }
+}
+
+impl From<String> for ConvertError {
+    fn from(m: String) -> Self {
+        ConvertError::Other(m)
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Problem<'a> {
+    Load(&'a tobj::LoadError),
+    NonFiniteVertex,
+}
+
+/// `path:LINE` for the first line of the OBJ text that explains `problem`, else `path`.
+/// (tobj reports what went wrong but not where.)
+fn at_line(path: &Path, text: &[u8], problem: Problem) -> String {
+    match find_line(text, problem) {
+        Some(line) => format!("{}:{line}", path.display()),
+        None => path.display().to_string(),
+    }
+}
+
+fn find_line(text: &[u8], problem: Problem) -> Option<usize> {
+    use tobj::LoadError as E;
+    let lines = || text.split(|&b| b == b'\n').enumerate();
+    let mut total = [0isize; 3]; // v, vt, vn
+    for (_, l) in lines() {
+        let l = String::from_utf8_lossy(l);
+        match l.split_whitespace().next() {
+            Some("v") => total[0] += 1,
+            Some("vt") => total[1] += 1,
+            Some("vn") => total[2] += 1,
+            _ => {}
+        }
+    }
+    let mut seen = [0isize; 3];
+    for (i, raw) in lines() {
+        let Ok(l) = std::str::from_utf8(raw) else {
+            if matches!(problem, Problem::Load(E::ReadError)) {
+                return Some(i + 1);
+            }
+            continue;
+        };
+        let mut words = l.split_whitespace();
+        let key = words.next();
+        let floats: Vec<Option<f32>> = words.clone().map(|w| w.parse().ok()).collect();
+        let bad_floats = |n: usize| floats.len() < n || floats[..n].iter().any(Option::is_none);
+        let hit = match (key, problem) {
+            (Some("v"), Problem::Load(E::PositionParseError)) => bad_floats(3),
+            (Some("v"), Problem::NonFiniteVertex) => floats
+                .iter()
+                .take(3)
+                .any(|f| f.is_some_and(|x| !x.is_finite())),
+            (Some("vt"), Problem::Load(E::TexcoordParseError)) => bad_floats(2),
+            (Some("vn"), Problem::Load(E::NormalParseError)) => bad_floats(3),
+            (
+                Some("f"),
+                Problem::Load(
+                    E::FaceParseError
+                    | E::FaceVertexOutOfBounds
+                    | E::FaceTexCoordOutOfBounds
+                    | E::FaceNormalOutOfBounds,
+                ),
+            ) => words.any(|w| {
+                w.split('/').enumerate().any(|(k, c)| {
+                    if c.is_empty() && k > 0 {
+                        return false;
+                    }
+                    match c.parse::<isize>() {
+                        Err(_) => true,
+                        Ok(x) => k > 2 || x == 0 || x > total[k] || x < -seen[k],
+                    }
+                })
+            }),
+            _ => false,
+        };
+        if hit {
+            return Some(i + 1);
+        }
+        match key {
+            Some("v") => seen[0] += 1,
+            Some("vt") => seen[1] += 1,
+            Some("vn") => seen[2] += 1,
+            _ => {}
+        }
+    }
+    None
+}
+
+fn convert(
+    path: &Path,
+    models: Vec<tobj::Model>,
+    mtls: Result<Vec<tobj::Material>, tobj::LoadError>,
+    override_material: Option<MaterialId>,
+) -> Result<LoadedObj, ConvertError> {
     let mut warnings = Vec::new();
     let mtls = match mtls {
         Ok(m) => m,
@@ -49,7 +190,8 @@ pub(crate) fn load_obj(
                 "OBJ {}: model \"{}\" is malformed",
                 path.display(),
                 model.name
-            ));
+            )
+            .into());
         }
         let positions: Vec<Vec3> = m
             .positions
@@ -57,11 +199,7 @@ pub(crate) fn load_obj(
             .map(|p| Vec3::new(p[0], p[1], p[2]))
             .collect();
         if positions.iter().any(|p| !p.is_finite()) {
-            return Err(format!(
-                "OBJ {}: model \"{}\" has a non-finite vertex",
-                path.display(),
-                model.name
-            ));
+            return Err(ConvertError::NonFiniteVertex(model.name.clone()));
         }
         let n = positions.len() as u32;
         let indices: Vec<[u32; 3]> = m
@@ -74,7 +212,8 @@ pub(crate) fn load_obj(
                 "OBJ {}: model \"{}\" indexes a vertex that does not exist",
                 path.display(),
                 model.name
-            ));
+            )
+            .into());
         }
         let normals: Vec<Vec3> = if m.normals.len() == m.positions.len() {
             m.normals
@@ -88,7 +227,7 @@ pub(crate) fn load_obj(
             None
         } else {
             match m.material_id.and_then(|i| mtls.get(i)) {
-                Some(mtl) => Some(from_mtl(path, mtl)),
+                Some(mtl) => Some(from_mtl(path, mtl)?),
                 None => {
                     if !mtls.is_empty() && !warned_unknown {
                         out.warnings.push(format!(
@@ -112,20 +251,33 @@ pub(crate) fn load_obj(
         out.materials.push(material);
     }
     if out.meshes.iter().all(|m| m.indices.is_empty()) {
-        return Err(format!("OBJ {} contains no triangles", path.display()));
+        return Err(format!("OBJ {} contains no triangles", path.display()).into());
     }
     Ok(out)
 }
 
-fn from_mtl(path: &Path, mtl: &tobj::Material) -> Material {
-    let kd = mtl.diffuse.map_or(Rgb::splat(0.8), Rgb::from_array);
-    let ke = mtl.emissive.map_or(Rgb::ZERO, Rgb::from_array);
-    Material {
+/// An MTL material as a diffuse [`Material`]. `Kd` above 1 is clamped (a sloppy MTL cannot make
+/// a surface create energy); NaN, infinite, negative or absurdly large (above
+/// [`crate::MAX_COLOUR`]) `Kd`/`Ke` are errors, as in TOML scenes.
+fn from_mtl(path: &Path, mtl: &tobj::Material) -> Result<Material, String> {
+    let colour = |key: &str, v: Option<[f32; 3]>, default: Rgb| -> Result<Rgb, String> {
+        let Some(a) = v else { return Ok(default) };
+        let Err(problem) = crate::check_colour(Rgb::from_array(a)) else {
+            return Ok(Rgb::from_array(a));
+        };
+        Err(format!(
+            "OBJ {}: MTL material \"{}\": {key} {a:?} {problem}",
+            path.display(),
+            mtl.name
+        ))
+    };
+    let kd = colour("Kd", mtl.diffuse, Rgb::splat(0.8))?;
+    let ke = colour("Ke", mtl.emissive, Rgb::ZERO)?;
+    Ok(Material {
         name: format!("{}:{}", path.display(), mtl.name),
-        // Clamp so that a sloppy MTL cannot make a surface create energy.
         bsdf: Bsdf::Diffuse {
-            reflectance: kd.clamp(Rgb::ZERO, Rgb::ONE),
+            reflectance: kd.min(Rgb::ONE),
         },
-        emission: ke.max(Rgb::ZERO),
-    }
+        emission: ke,
+    })
 }

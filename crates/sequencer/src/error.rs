@@ -24,16 +24,25 @@ impl Failure {
     }
 
     /// Classifies an I/O error on `path` while doing `what`.
+    ///
+    /// A read-only file system (EROFS) counts as transient: the output directory was writable
+    /// when the job was planned, and read-only storage is an administrative state (a remount
+    /// after disk errors, maintenance, a snapshot), not a property of the job, so retrying once
+    /// the storage is back resumes where the run stopped. Farm submitters cap exit-75 retries.
     pub fn io(what: &str, path: &Path, e: &io::Error) -> Failure {
         let msg = format!("{what} {}: {e}", path.display());
-        // ENOSPC 28, EDQUOT 122, EIO 5, EAGAIN 11, EINTR 4, ESTALE 116, ETIMEDOUT 110, EBUSY 16
+        // ENOSPC 28, EDQUOT 122, EIO 5, EAGAIN 11, EINTR 4, ESTALE 116, ETIMEDOUT 110, EBUSY 16,
+        // EROFS 30
         match e.raw_os_error() {
-            Some(28 | 122 | 5 | 11 | 4 | 116 | 110 | 16) => Failure::Transient(msg),
+            Some(28 | 122 | 5 | 11 | 4 | 116 | 110 | 16 | 30) => Failure::Transient(msg),
+            // Content that is not what it must be (a CSV that is not UTF-8): bad input.
+            _ if e.kind() == io::ErrorKind::InvalidData => Failure::Input(msg),
             _ => match e.kind() {
                 io::ErrorKind::StorageFull
                 | io::ErrorKind::Interrupted
                 | io::ErrorKind::TimedOut
-                | io::ErrorKind::WouldBlock => Failure::Transient(msg),
+                | io::ErrorKind::WouldBlock
+                | io::ErrorKind::ReadOnlyFilesystem => Failure::Transient(msg),
                 _ => Failure::Other(msg),
             },
         }

@@ -13,6 +13,7 @@ pub mod output;
 pub mod paper;
 pub mod progress;
 pub mod report;
+pub mod resources;
 pub mod sequence;
 pub mod still;
 

@@ -212,6 +212,13 @@ pub fn job_settings(job: &Job) -> std::collections::BTreeMap<String, String> {
 pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, Failure> {
     let start = Instant::now();
     let (planned, all) = plan_frames(job, o.selection.as_ref(), o.chunk)?;
+    // Before the output directory is touched: a frame that cannot fit in memory fails now.
+    crate::resources::check_render(
+        &format!("the job {}", job.source),
+        job.width,
+        job.height,
+        job.scene.triangle_count(),
+    )?;
     crate::still::prepare_out_dir(&o.out)?;
     let _lock = lock_dir(&o.out)?;
     remove_stale_temps(&o.out)?;
@@ -228,7 +235,8 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
                 o.out.display(),
                 m.job_name,
                 m.job_source,
-                &m.job_hash[..12],
+                // The old manifest is input: its hash may be short or not even ASCII.
+                m.job_hash.get(..12).unwrap_or(&m.job_hash),
                 &job.hash[..12]
             )));
         }
@@ -280,9 +288,23 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             let (entry, readings, frame) = render_frame(job, &data, f, &o.out, &progress)?;
             let rows = std::fs::read(o.out.join("rows").join(frame_name(f, "csv")))
                 .map_err(|e| Failure::io("cannot read back rows", &o.out, &e))?;
-            append(&o.out.join(CSV), &rows)?;
+            let csv = o.out.join(CSV);
+            let csv_len = std::fs::metadata(&csv).map(|md| md.len());
             m.frames.insert(f, entry);
-            m.save(&o.out)?;
+            if let Err(e) = append(&csv, &rows).and_then(|()| m.save(&o.out)) {
+                // The frame is not committed (the manifest on disk does not list it): cut the
+                // CSV back to the committed frames' rows, so that a failed run (disk full in
+                // the append or the manifest write) leaves no torn or uncommitted row behind.
+                // Truncating needs no free space.
+                m.frames.remove(&f);
+                if let Ok(len) = csv_len {
+                    let _ = OpenOptions::new()
+                        .write(true)
+                        .open(&csv)
+                        .and_then(|file| file.set_len(len));
+                }
+                return Err(e);
+            }
             summary.rendered += 1;
             summary.render_seconds += frame.stats.seconds;
             let total = t.elapsed().as_secs_f64();

@@ -59,6 +59,12 @@ pub struct StillResult {
 /// Renders the still and writes `raw.exr` and `preview.png` into `o.out`.
 pub fn render_still(scene: &Scene, o: &StillOptions) -> Result<StillResult, Failure> {
     let (view, settings) = resolve(scene, o)?;
+    crate::resources::check_render(
+        &format!("rendering {}", scene.source.display()),
+        view.width,
+        view.height,
+        scene.triangle_count(),
+    )?;
     let t = Instant::now();
     let data = SceneData::new(scene);
     let bvh_seconds = t.elapsed().as_secs_f64();
@@ -94,6 +100,22 @@ pub fn stats_json(r: &StillResult) -> String {
 
 /// Validates an output directory up front: it must be a directory or creatable.
 pub fn prepare_out_dir(dir: &Path) -> Result<(), Failure> {
+    // The path itself, or (for a directory still to be created) one of its ancestors, may be
+    // an existing file: bad usage, named, rather than an I/O failure.
+    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+        return Err(Failure::Input(if file == dir {
+            format!(
+                "output path {} exists and is not a directory",
+                dir.display()
+            )
+        } else {
+            format!(
+                "output path {}: {} exists and is not a directory",
+                dir.display(),
+                file.display()
+            )
+        }));
+    }
     if dir.exists() && !dir.is_dir() {
         return Err(Failure::Input(format!(
             "output path {} exists and is not a directory",

@@ -228,6 +228,22 @@ impl<'t> Builder<'t> {
         }
     }
 
+    /// Numbers are read as f64 but rendered in f32: a finite value beyond ±3.4e38 (a
+    /// `translate` of 1e300, a sphere radius of 1e300) became infinite and the object
+    /// silently vanished from the render. `ok` says whether `o`'s result stayed finite.
+    fn single_precision(&mut self, ok: bool, o: &Obj) {
+        if !ok {
+            self.error(
+                o.at,
+                format!(
+                    "{}: its positions are not finite in single precision (a coordinate, \
+                     transform or radius beyond ±3.4e38)",
+                    o.describe()
+                ),
+            );
+        }
+    }
+
     /// A colour: `<rgb>`, a constant `<spectrum>`, `<float>` or `<integer>` (grey). A texture
     /// in its place is unsupported (reported where the texture is defined or nested).
     fn colour(&mut self, o: &'t Obj, name: &str) -> Option<Rgb> {
@@ -247,6 +263,24 @@ impl<'t> Builder<'t> {
                     format!(
                         "parameter `{name}` of {} is {c:?}: colours cannot be negative",
                         o.describe()
+                    ),
+                );
+                return None;
+            }
+            // As in TOML scenes: at most MAX_COLOUR (so also finite in single precision).
+            if let Err(problem) = crate::check_colour(c.as_vec3()) {
+                let problem = if c.as_vec3().is_finite() {
+                    problem
+                } else {
+                    // Beyond f32: say what check_colour says of the largest f32.
+                    crate::check_colour(Rgb::splat(f32::MAX)).unwrap_err()
+                };
+                self.error(
+                    p.at,
+                    format!(
+                        "parameter `{name}` of {} is {:?}: it {problem}",
+                        o.describe(),
+                        c.to_array()
                     ),
                 );
                 return None;
@@ -365,8 +399,27 @@ impl<'t> Builder<'t> {
                     }
                 },
                 "texture" => self.texture(o),
-                "shape" => self.shape(o, index),
-                "emitter" => self.emitter(o),
+                "shape" => {
+                    let before = self.scene.meshes.len();
+                    self.shape(o, index);
+                    let ok = self.scene.meshes[before..]
+                        .iter()
+                        .all(|m| m.positions.iter().all(|p| p.is_finite()));
+                    self.single_precision(ok, o);
+                }
+                "emitter" => {
+                    let before = self.scene.lights.len();
+                    self.emitter(o);
+                    let ok = self.scene.lights[before..].iter().all(|l| match l {
+                        Light::Point { position, .. } => position.is_finite(),
+                        Light::Spot {
+                            position,
+                            direction,
+                            ..
+                        } => position.is_finite() && direction.is_finite(),
+                    });
+                    self.single_precision(ok, o);
+                }
                 "sensor" => {
                     if sensor_seen {
                         self.warning(
@@ -376,6 +429,10 @@ impl<'t> Builder<'t> {
                     } else {
                         sensor_seen = true;
                         self.sensor(o);
+                        let ok = self.scene.camera.as_ref().is_none_or(|c| {
+                            c.position.is_finite() && c.look_at.is_finite() && c.up.is_finite()
+                        });
+                        self.single_precision(ok, o);
                     }
                 }
                 "integrator" => {

@@ -191,7 +191,9 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
                 }
                 let nrm_idx = ["nx", "ny", "nz"].map(find);
                 let has_normals = nrm_idx.iter().all(Option::is_some);
-                out.positions.reserve(el.count);
+                // The count comes from the header: never reserve more than the body can hold
+                // (a hostile `element vertex 18446744073709551615` aborted the process).
+                out.positions.reserve(el.count.min(bytes.len()));
                 let mut vals = vec![0.0f64; el.props.len()];
                 for _ in 0..el.count {
                     for (i, p) in el.props.iter().enumerate() {
@@ -337,6 +339,19 @@ end_header
         assert_eq!(m.positions[1], Vec3::new(2.0, 0.0, 0.0));
         assert_eq!(m.normals.len(), 3);
         assert_eq!(m.indices, vec![[0, 1, 2]]);
+    }
+
+    #[test]
+    fn absurd_element_counts_are_errors_not_aborts() {
+        for count in ["18446744073709551615", "4000000000000"] {
+            for format in ["ascii", "binary_little_endian"] {
+                let ply = ASCII
+                    .replace("element vertex 4", &format!("element vertex {count}"))
+                    .replace("ascii", format);
+                let e = parse_ply(ply.as_bytes()).unwrap_err();
+                assert!(e.contains("ends") || e.contains("number"), "{e}");
+            }
+        }
     }
 
     #[test]

@@ -7,6 +7,10 @@ use roxmltree::{Document, Node, ParsingOptions};
 use std::cell::Cell;
 use std::collections::HashMap;
 
+/// Deepest nesting of objects (shape > bsdf > bsdf > texture…) a scene may use; real scenes
+/// nest a handful.
+const MAX_DEPTH: usize = 64;
+
 /// A typed property value, as the XML tag declared it.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Value {
@@ -225,7 +229,7 @@ impl<'a> Parser<'a> {
                 continue;
             }
             if is_object(el) {
-                if let Some(o) = self.object(el, true) {
+                if let Some(o) = self.object(el, true, 0) {
                     objects.push(o);
                 }
             } else if PROPERTY_TAGS.contains(&tag) {
@@ -313,9 +317,18 @@ impl<'a> Parser<'a> {
         Some(out)
     }
 
-    fn object(&mut self, el: Node, top_level: bool) -> Option<Obj> {
+    /// `depth` counts the objects around `el`; past [`MAX_DEPTH`] the subtree is an error
+    /// (the recursion overflowed the stack on about 10 000 nested elements).
+    fn object(&mut self, el: Node, top_level: bool, depth: usize) -> Option<Obj> {
         let tag = el.tag_name().name().to_string();
         let at = el.range().start;
+        if depth >= MAX_DEPTH {
+            self.error(
+                at,
+                format!("<{tag}> is nested more than {MAX_DEPTH} objects deep"),
+            );
+            return None;
+        }
         self.check_attrs(el, &["type", "id", "name"]);
         let Some(kind) = self.attr(el, "type") else {
             if el.attribute("type").is_none() {
@@ -356,7 +369,7 @@ impl<'a> Parser<'a> {
             let ctag = c.tag_name().name();
             let cat = c.range().start;
             if is_object(c) {
-                if let Some(child) = self.object(c, false) {
+                if let Some(child) = self.object(c, false, depth + 1) {
                     let name = child.name.clone();
                     obj.children.push(Child {
                         kind: ChildKind::Obj(child),

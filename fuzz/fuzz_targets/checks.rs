@@ -1,0 +1,260 @@
+//! What the fuzz targets check, one function per target. Shared with `tests/corpus.rs`, which
+//! feeds every input kept in `tests/corpus/fuzz-regressions/TARGET/` to the same function in a
+//! normal `cargo test` (so it depends on nothing but the eyeadapt crates).
+#![allow(dead_code)]
+use eyeadapt_scene::{Bsdf, Light, Rgb as Vec3, Scene, check_colour, load_obj_bytes};
+use eyeadapt_sequencer::{FrameSet, MAX_FRAMES, chunk, chunk_count};
+use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View, render};
+use std::path::Path;
+
+/// Builds the BVH and light set of an accepted scene and renders a 4×3 image at 1 spp: no
+/// panic, and every pixel of every AOV is finite (non-finite samples must be dropped).
+/// Scenes above `max_triangles` only get their BVH built (rendering them is slow for a fuzzer).
+pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
+    for m in &scene.meshes {
+        assert!(
+            m.positions.iter().all(|p| p.is_finite()),
+            "non-finite vertex accepted"
+        );
+        let n = m.positions.len() as u32;
+        assert!(
+            m.indices.iter().flatten().all(|&i| i < n),
+            "index out of range accepted"
+        );
+        if let Some(eyeadapt_scene::MaterialId(i)) = m.material {
+            assert!((i as usize) < scene.materials.len(), "dangling material id");
+        }
+    }
+    for mat in &scene.materials {
+        assert!(
+            check_colour(mat.emission).is_ok(),
+            "bad emission accepted: {mat:?}"
+        );
+        let ok = match &mat.bsdf {
+            Bsdf::Diffuse { reflectance } => check_colour(*reflectance).is_ok(),
+            Bsdf::Conductor {
+                alpha,
+                eta,
+                k,
+                specular_reflectance,
+            } => {
+                alpha.is_finite()
+                    && check_colour(*eta).is_ok()
+                    && check_colour(*k).is_ok()
+                    && check_colour(*specular_reflectance).is_ok()
+            }
+            Bsdf::Plastic {
+                reflectance,
+                alpha,
+                ior,
+            } => check_colour(*reflectance).is_ok() && alpha.is_finite() && ior.is_finite(),
+        };
+        assert!(ok, "bad material accepted: {mat:?}");
+    }
+    if let Some(c) = &scene.camera {
+        assert!(
+            c.position.is_finite() && c.look_at.is_finite() && c.up.is_finite(),
+            "non-finite camera accepted: {c:?}"
+        );
+        assert!(
+            c.fov_deg > 0.0 && c.fov_deg < 180.0,
+            "bad fov accepted: {c:?}"
+        );
+        assert!(c.width >= 1 && c.height >= 1, "empty image accepted: {c:?}");
+        assert!(c.forward().is_finite(), "no view direction accepted: {c:?}");
+    }
+    for l in &scene.lights {
+        let ok = match l {
+            Light::Point {
+                position,
+                intensity,
+            } => position.is_finite() && check_colour(*intensity).is_ok(),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cone_deg,
+                falloff_deg,
+            } => {
+                position.is_finite()
+                    && direction.is_finite()
+                    && check_colour(*intensity).is_ok()
+                    && cone_deg.is_finite()
+                    && falloff_deg.is_finite()
+            }
+        };
+        assert!(ok, "bad light accepted: {l:?}");
+    }
+    if let Some(e) = scene.environment {
+        assert!(check_colour(e).is_ok(), "bad environment accepted: {e:?}");
+    }
+    if scene.triangle_count() > max_triangles {
+        return;
+    }
+    let data = SceneData::new(scene);
+    let view = match &scene.camera {
+        Some(c) => View {
+            width: 4,
+            height: 3,
+            ..View::from_camera(c)
+        },
+        None => View {
+            position: Vec3::new(0.0, 0.0, 5.0),
+            forward: Vec3::NEG_Z,
+            up: Vec3::Y,
+            fov_deg: 60.0,
+            width: 4,
+            height: 3,
+        },
+    };
+    let settings = RenderSettings {
+        spp: 1,
+        path: PathSettings {
+            max_depth: 4,
+            rr_depth: 3,
+        },
+        seed: 1,
+        frame: 0,
+    };
+    let f = render(&data, &view, &settings);
+    assert_eq!(f.stats.samples, 12);
+    for v in [&f.rgb, &f.albedo, &f.achromatic, &f.irradiance, &f.normal] {
+        assert_eq!(v.len(), 12);
+        assert!(
+            v.iter().flatten().all(|x| x.is_finite()),
+            "non-finite pixel"
+        );
+    }
+    for v in [&f.depth, &f.emitter, &f.hit] {
+        assert!(v.iter().all(|x| x.is_finite()), "non-finite pixel");
+    }
+}
+
+/// `scene_toml`: the TOML scene loader on arbitrary text returns a scene or located
+/// diagnostics, never panics; accepted scenes build and render.
+pub fn scene_toml(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    // A directory that does not exist: relative OBJ paths resolve to nothing.
+    let path = Path::new("/nonexistent-eyeadapt-fuzz/scene.toml");
+    match eyeadapt_scene::load_scene_str(text, path) {
+        Ok(scene) => check_accepted_scene(&scene, 5_000),
+        Err(e) => {
+            assert!(!e.diagnostics.is_empty());
+            for d in &e.diagnostics {
+                // Every location lies inside the text (line 0 = whole file).
+                assert!(d.line <= text.lines().count() + 1, "{d}");
+                let _ = d.to_string();
+            }
+        }
+    }
+}
+
+/// `obj`: the OBJ/MTL path (`load_obj_bytes`, the validation of a scene's obj shape) on
+/// arbitrary bytes, split at the first NUL into an OBJ and the MTL every `mtllib` resolves
+/// to. Never panics; accepted meshes build and render.
+pub fn obj(data: &[u8]) {
+    let (obj, mtl) = match data.iter().position(|&b| b == 0) {
+        Some(i) => (&data[..i], Some(&data[i + 1..])),
+        None => (data, None),
+    };
+    let Ok(loaded) = load_obj_bytes(obj, mtl, Path::new("fuzz.obj")) else {
+        return;
+    };
+    assert_eq!(loaded.meshes.len(), loaded.materials.len());
+    let mut scene = Scene::default();
+    for (mut mesh, mat) in loaded.meshes.into_iter().zip(loaded.materials) {
+        mesh.material = mat.map(|m| scene.add_material(m));
+        scene.meshes.push(mesh);
+    }
+    scene.environment = Some(Vec3::splat(0.5));
+    check_accepted_scene(&scene, 20_000);
+}
+
+/// `frame_spec`: frame specs (`FrameSet::from_str`, `from_start_end_step`, chunks) never
+/// panic; results are sorted and unique, within `MAX_FRAMES`, and round-trip through Display.
+pub fn frame_spec(data: &[u8]) {
+    if data.len() >= 12 {
+        let w = |i: usize| u32::from_le_bytes(data[i..i + 4].try_into().unwrap());
+        let (start, end, step) = (w(0), w(4), w(8));
+        // Only ranges small enough to enumerate cheaply; the cap itself is tested below.
+        if start <= end && step > 0 && (end - start) / step < 100_000 {
+            let set = FrameSet::from_start_end_step(start, end, step).unwrap();
+            let s = set.as_slice();
+            assert_eq!(s.first(), Some(&start));
+            assert!(s.windows(2).all(|p| p[1] - p[0] == step));
+            assert!(*s.last().unwrap() <= end && end - s.last().unwrap() < step);
+        } else if start > end || step == 0 {
+            assert!(FrameSet::from_start_end_step(start, end, step).is_err());
+        }
+    }
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    match text.parse::<FrameSet>() {
+        Ok(set) => {
+            let s = set.as_slice();
+            assert!(!s.is_empty());
+            assert!(s.len() as u64 <= MAX_FRAMES);
+            assert!(s.windows(2).all(|p| p[0] < p[1]), "not sorted and unique");
+            let shown = set.to_string();
+            let back: FrameSet = shown.parse().expect("Display output must parse");
+            assert_eq!(back, set, "round trip through {shown:?}");
+            // Chunking is linear in the set; keep executions fast on million-frame specs.
+            let sizes: &[usize] = if s.len() <= 10_000 {
+                &[1, 7, 1000]
+            } else {
+                &[]
+            };
+            for &size in sizes {
+                let n = chunk_count(s.len(), size).unwrap();
+                let mut joined = Vec::new();
+                for i in 0..n {
+                    joined.extend_from_slice(chunk(s, size, i).unwrap());
+                }
+                assert_eq!(joined, s);
+                assert!(chunk(s, size, n).is_err());
+            }
+        }
+        Err(e) => {
+            assert!(e.column >= 1 && e.column <= text.chars().count() + 1, "{e}");
+            let _ = e.to_string();
+        }
+    }
+}
+
+/// `mitsuba_xml`: the Mitsuba 3 XML loader (`load_mitsuba_str`) on arbitrary text returns a
+/// scene or located diagnostics, never panics; accepted scenes build and render. Bytes after
+/// the first NUL become `mesh.ply` next to the scene, so `<string name="filename"
+/// value="mesh.ply"/>` reaches the PLY reader too.
+pub fn mitsuba_xml(data: &[u8]) {
+    let (xml, ply) = match data.iter().position(|&b| b == 0) {
+        Some(i) => (&data[..i], Some(&data[i + 1..])),
+        None => (data, None),
+    };
+    let Ok(text) = std::str::from_utf8(xml) else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("eyeadapt-fuzz-xml-{}", std::process::id()));
+    let mesh = dir.join("mesh.ply");
+    match ply {
+        Some(bytes) => {
+            std::fs::create_dir_all(&dir).unwrap();
+            std::fs::write(&mesh, bytes).unwrap();
+        }
+        None => {
+            let _ = std::fs::remove_file(&mesh);
+        }
+    }
+    match eyeadapt_scene::load_mitsuba_str(text, &dir.join("scene.xml"), &[]) {
+        Ok(scene) => check_accepted_scene(&scene, 5_000),
+        Err(e) => {
+            assert!(!e.diagnostics.is_empty());
+            for d in &e.diagnostics {
+                assert!(d.line <= text.lines().count() + 1, "{d}");
+                let _ = d.to_string();
+            }
+        }
+    }
+}
