@@ -341,13 +341,43 @@ pub fn apply(m: DMat3, rgb: &[[f32; 3]]) -> Vec<[f32; 3]> {
 /// Column names of adaptation.csv (estimators.md §0.2, then abs_Y and the camera position).
 pub const CSV_HEADER: &str = "frame,time_s,estimator,X,Y,Z,x,y,u_prime,v_prime,cct_mccamy,r_lin,g_lin,b_lin,std_err_u,std_err_v,n_samples,valid,flags,abs_Y,cam_x,cam_y,cam_z";
 
-fn num(out: &mut String, v: f64) {
+/// Writes one CSV number: the shortest round-trip form, `NaN` when not finite.
+pub(crate) fn num(out: &mut String, v: f64) {
     if v.is_finite() {
         // Shortest round-trip representation (exact, stable, diff-friendly). Debug keeps a
         // decimal point on integral values ("1.0"), so readers infer a float column.
         let _ = write!(out, "{v:?}");
     } else {
         out.push_str("NaN");
+    }
+}
+
+/// The white's columns `X,Y,Z,x,y,u_prime,v_prime,cct_mccamy,r_lin,g_lin,b_lin,` (with the
+/// trailing comma); shared by per-frame rows and the report's derived rows.
+pub(crate) fn white_columns(s: &mut String, xyz: DVec3, valid: bool) {
+    let xy = if valid { xyz_to_xy(xyz) } else { None };
+    let uv = if valid { xyz_to_uv(xyz) } else { None };
+    for v in [xyz.x, xyz.y, xyz.z] {
+        num(s, v);
+        s.push(',');
+    }
+    for v in [
+        xy.map(|p| p.x),
+        xy.map(|p| p.y),
+        uv.map(|p| p.x),
+        uv.map(|p| p.y),
+    ] {
+        num(s, v.unwrap_or(f64::NAN));
+        s.push(',');
+    }
+    if let Some(cct) = xy.and_then(cct_mccamy) {
+        num(s, cct);
+    }
+    s.push(',');
+    let rgb = xyz_to_rgb(xyz);
+    for v in [rgb.x, rgb.y, rgb.z] {
+        num(s, v);
+        s.push(',');
     }
 }
 
@@ -366,30 +396,7 @@ pub fn csv_row(
     num(&mut s, time);
     let _ = write!(s, ",{},", r.estimator);
     let valid = e.is_valid();
-    let xy = if valid { xyz_to_xy(xyz) } else { None };
-    let uv = if valid { xyz_to_uv(xyz) } else { None };
-    let rgb = xyz_to_rgb(xyz);
-    for v in [xyz.x, xyz.y, xyz.z] {
-        num(&mut s, v);
-        s.push(',');
-    }
-    for v in [
-        xy.map(|p| p.x),
-        xy.map(|p| p.y),
-        uv.map(|p| p.x),
-        uv.map(|p| p.y),
-    ] {
-        num(&mut s, v.unwrap_or(f64::NAN));
-        s.push(',');
-    }
-    if let Some(cct) = xy.and_then(cct_mccamy) {
-        num(&mut s, cct);
-    }
-    s.push(',');
-    for v in [rgb.x, rgb.y, rgb.z] {
-        num(&mut s, v);
-        s.push(',');
-    }
+    white_columns(&mut s, xyz, valid);
     match e.std_err_uv {
         Some([a, b]) => {
             num(&mut s, a);

@@ -1,7 +1,7 @@
 //! Reading `adaptation.csv` back (a small reader for the file [`crate::adapt::csv_row`]
 //! writes: no quoting, `;` inside the flags cell) and writing the report's derived rows in
 //! the same schema.
-use crate::adapt::CSV_HEADER;
+use crate::adapt::{CSV_HEADER, num};
 use crate::error::Failure;
 use std::collections::BTreeSet;
 use std::fmt::Write;
@@ -121,14 +121,6 @@ pub fn parse(text: &str, source: &Path, committed: &BTreeSet<u32>) -> Result<Tab
     Ok(table)
 }
 
-fn num(out: &mut String, v: f64) {
-    if v.is_finite() {
-        let _ = write!(out, "{v}");
-    } else {
-        out.push_str("NaN");
-    }
-}
-
 /// One derived row (with its newline), in [`CSV_HEADER`]'s columns: the filtered white
 /// (`xyz`, Y = 1) with its chromaticities, CCT and linear sRGB; no standard errors; `abs_Y`
 /// NaN (a filtered white has no absolute scale); frame, time, sample count and camera
@@ -143,7 +135,6 @@ pub fn derived_row(
     flags: &[&str],
     src: Option<&Row>,
 ) -> String {
-    use eyeadapt_color::{cct_mccamy, xyz_to_rgb, xyz_to_uv, xyz_to_xy};
     let mut s = String::with_capacity(256);
     let _ = write!(s, "{frame},");
     match src {
@@ -151,30 +142,7 @@ pub fn derived_row(
         None => num(&mut s, time),
     }
     let _ = write!(s, ",{estimator},");
-    let xy = if valid { xyz_to_xy(xyz) } else { None };
-    let uv = if valid { xyz_to_uv(xyz) } else { None };
-    for v in [xyz.x, xyz.y, xyz.z] {
-        num(&mut s, v);
-        s.push(',');
-    }
-    for v in [
-        xy.map(|p| p.x),
-        xy.map(|p| p.y),
-        uv.map(|p| p.x),
-        uv.map(|p| p.y),
-    ] {
-        num(&mut s, v.unwrap_or(f64::NAN));
-        s.push(',');
-    }
-    if let Some(cct) = xy.and_then(cct_mccamy) {
-        num(&mut s, cct);
-    }
-    s.push(',');
-    let rgb = xyz_to_rgb(xyz);
-    for v in [rgb.x, rgb.y, rgb.z] {
-        num(&mut s, v);
-        s.push(',');
-    }
+    crate::adapt::white_columns(&mut s, xyz, valid);
     // std_err_u, std_err_v: empty.
     s.push(',');
     s.push(',');
