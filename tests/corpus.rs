@@ -756,12 +756,10 @@ fn a_foreign_manifest_with_a_short_hash_is_refused_not_a_panic() {
     }
 }
 
-/// Known bugs in `merge.rs`, which this branch does not own (found by the hostile-manifest
-/// cases; ignored until merge validates its inputs): a chunk manifest whose `job_hash` is
+/// Hostile chunk manifests (these were bugs, found by this corpus): a chunk manifest whose `job_hash` is
 /// shorter than 12 bytes panics (exit 101) when the hashes differ, and a file `path` with `..`
 /// makes merge read a file outside the chunk and write it outside `--out`.
 #[test]
-#[ignore = "merge.rs is outside the reliab branch: short job_hash panics, `..` paths escape --out"]
 fn merge_refuses_hostile_chunk_manifests() {
     let t = tempfile::tempdir().unwrap();
     let root = t.path();

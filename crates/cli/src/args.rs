@@ -32,6 +32,8 @@ pub enum Command {
     Scenes,
     /// Temporal-coherence report of a sequence directory: coherence.csv, plots, report.html.
     Report(ReportArgs),
+    /// Render the paper's six test cases and check its claims: RESULTS.md + contact sheets.
+    Paper(PaperArgs),
 }
 
 #[derive(Args, Debug)]
@@ -44,6 +46,33 @@ pub struct ReportArgs {
     /// Gaussian σ in seconds of the hf_rms low-pass (estimators.md §7.2).
     #[arg(long, default_value_t = eyeadapt_color::DEFAULT_SIGMA_S)]
     pub sigma_s: f64,
+}
+
+#[derive(Args, Debug)]
+pub struct PaperArgs {
+    /// Small images and few samples (about a minute on 2 cores).
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for RESULTS.md and the contact sheets (default: paper, or out/paper-quick
+    /// with --quick).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Write RESULTS.md here instead of OUT/RESULTS.md.
+    #[arg(long)]
+    pub results: Option<PathBuf>,
+    /// Directory for the per-case job files, CSVs and raw EXRs (default: out/paper-work, or
+    /// OUT/work when --out is given).
+    #[arg(long)]
+    pub work: Option<PathBuf>,
+    /// Only these cases (comma list of 1-6).
+    #[arg(long, value_delimiter = ',')]
+    pub cases: Vec<u32>,
+    /// Random seed; the same seed gives the same RESULTS.md, byte for byte.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Eye-sensor paths per frame (default: the job files' 16384).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
+    pub eye_samples: Option<u32>,
 }
 
 #[derive(Args, Debug, Clone)]

@@ -6,6 +6,7 @@
 mod adapt_cli;
 mod args;
 mod cmd_bench;
+mod cmd_paper;
 mod cmd_render;
 mod cmd_report;
 mod cmd_sequence;
@@ -42,6 +43,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Plan(a) => cmd_sequence::plan(*a),
         Command::Merge(a) => cmd_sequence::merge(a),
         Command::Report(a) => cmd_report::run(a),
+        Command::Paper(a) => cmd_paper::run(a),
         Command::Scenes => {
             for (name, what) in eyeadapt_scene::builtin_scenes() {
                 println!("builtin:{name:<28} {what}");

@@ -20,6 +20,36 @@ const EMBEDDED: &[(&str, &str, &str)] = &[
         "the paper's walkthrough: rooms lit white, orange, blue; glossy bench; 5 s camera path",
         include_str!("../../../scenes/three-rooms/scene.toml"),
     ),
+    (
+        "cornell-orange",
+        "paper case 1 (Fig. 5): all-white Cornell box, one 2700 K (orange) light",
+        include_str!("../../../scenes/cornell-orange/scene.toml"),
+    ),
+    (
+        "white-world-orange-light",
+        "paper case 2 (Fig. 6): closed room of one grey reflectance, 2700 K light",
+        include_str!("../../../scenes/one-reflectance/white-world-orange-light.toml"),
+    ),
+    (
+        "orange-world-white-light",
+        "paper case 2 (Fig. 7): closed room of one orange reflectance, white light",
+        include_str!("../../../scenes/one-reflectance/orange-world-white-light.toml"),
+    ),
+    (
+        "cornell-green-floor",
+        "paper case 3 (Fig. 8): Cornell box, green floor, white light, 24-patch colour checker",
+        include_str!("../../../scenes/cornell-green-floor/scene.toml"),
+    ),
+    (
+        "statue-red-spot",
+        "paper case 4 (Fig. 9): white statue lit by a red spot and a white ceiling light",
+        include_str!("../../../scenes/statue-red-spot/scene.toml"),
+    ),
+    (
+        "two-rooms",
+        "paper case 5 (Fig. 10-12): room 1 lit by four orange lights, room 2 by four blue",
+        include_str!("../../../scenes/two-rooms/scene.toml"),
+    ),
 ];
 
 /// Loads `builtin:NAME`.

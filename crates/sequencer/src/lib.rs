@@ -10,6 +10,7 @@ pub mod job;
 pub mod manifest;
 pub mod merge;
 pub mod output;
+pub mod paper;
 pub mod progress;
 pub mod report;
 pub mod resources;

@@ -51,6 +51,31 @@ pub struct Manifest {
     pub frames: BTreeMap<u32, FrameEntry>,
 }
 
+/// The first 12 characters of a hash, for messages (whatever the hash's length).
+pub fn short_hash(h: &str) -> String {
+    h.chars().take(12).collect()
+}
+
+/// A manifest's file paths must stay inside its directory: relative, no `..`, no root.
+fn check_paths(m: &Manifest, file: &Path) -> Result<(), Failure> {
+    for (f, e) in &m.frames {
+        for fe in &e.files {
+            let p = Path::new(&fe.path);
+            let inside = p
+                .components()
+                .all(|c| matches!(c, std::path::Component::Normal(_)));
+            if !inside || fe.path.is_empty() {
+                return Err(Failure::Input(format!(
+                    "{}: frame {f}: file path \"{}\" leaves the output directory",
+                    file.display(),
+                    fe.path
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 pub fn checksum(bytes: &[u8]) -> String {
     crate::job::hex(&Sha256::digest(bytes)[..16])
 }
@@ -69,12 +94,16 @@ impl Manifest {
     pub fn load(dir: &Path) -> Result<Option<Manifest>, Failure> {
         let p = dir.join(MANIFEST);
         match std::fs::read(&p) {
-            Ok(b) => serde_json::from_slice(&b).map(Some).map_err(|e| {
-                Failure::Input(format!(
-                    "{}: not a valid eyeadapt manifest: {e}",
-                    p.display()
-                ))
-            }),
+            Ok(b) => {
+                let m: Manifest = serde_json::from_slice(&b).map_err(|e| {
+                    Failure::Input(format!(
+                        "{}: not a valid eyeadapt manifest: {e}",
+                        p.display()
+                    ))
+                })?;
+                check_paths(&m, &p)?;
+                Ok(Some(m))
+            }
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
             Err(e) => Err(Failure::io("cannot read", &p, &e)),
         }

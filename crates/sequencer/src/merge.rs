@@ -49,10 +49,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeSummary, Failure> {
                 "{} (job \"{}\", hash {}…) and {} (job \"{}\", hash {}…) come from different jobs or settings",
                 d0.display(),
                 m0.job_name,
-                &m0.job_hash[..12],
+                crate::manifest::short_hash(&m0.job_hash),
                 d.display(),
                 m.job_name,
-                &m.job_hash[..12]
+                crate::manifest::short_hash(&m.job_hash)
             )));
         }
         if m.job_frames != m0.job_frames {

@@ -237,7 +237,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
                 m.job_source,
                 // The old manifest is input: its hash may be short or not even ASCII.
                 m.job_hash.get(..12).unwrap_or(&m.job_hash),
-                &job.hash[..12]
+                crate::manifest::short_hash(&job.hash)
             )));
         }
         _ => new_manifest(job, &planned, &all),
