@@ -6,8 +6,8 @@
 //! Frames are tiny (8×6, 1 spp, 64 eye samples), so most of a run is file writes, fsyncs,
 //! renames and the CSV append. Half of the kills come at a seeded time between process start
 //! and the end of a run; the other half a seeded 0–4 ms after the run reports its k-th saved
-//! file (k seeded too), which lands them in the writes of later files, the row file, the CSV
-//! append and the manifest commit.
+//! file (k seeded too, and for half of them the last file of a frame), which lands them in the
+//! writes of later files, the row file, the CSV append and the manifest commit.
 //! What each kill interrupted is read from the directory it left (a temporary file: during an
 //! atomic write; CSV rows beyond the manifest: between the append and the manifest commit) and
 //! printed, with the tally, by `cargo test --release --test torture -- --nocapture`.
@@ -205,7 +205,13 @@ fn twenty_kills_at_random_moments_resume_to_identical_outputs() {
                 // By progress: 0-4 ms after the k-th "Saved:" line, which the run prints
                 // right after renaming a file into place. The last file of a frame is
                 // followed by its row file, the CSV append and the manifest commit.
-                let k = rng.next() % SAVED_LINES;
+                // Half of these aim at the last file of a frame (its 10th), right before
+                // the row file, the CSV append and the manifest commit.
+                let k = if rng.next().is_multiple_of(2) {
+                    rng.next() % SAVED_LINES
+                } else {
+                    10 * (rng.next() % (SAVED_LINES / 10)) + 9
+                };
                 let extra = Duration::from_micros(rng.next() % 4000);
                 let stdout = child.stdout.take().unwrap();
                 let mut seen = 0;

@@ -1,6 +1,7 @@
 //! Wavefront OBJ through `tobj`, with MTL `Kd` (diffuse reflectance) and `Ke` (emission).
 use crate::{Bsdf, Material, MaterialId, Mesh, Rgb};
 use glam::Vec3;
+use std::cell::RefCell;
 use std::path::Path;
 
 /// The triangles and materials of one OBJ file.
@@ -23,24 +24,62 @@ pub(crate) fn load_obj(
             path.display()
         ));
     }
+    let file = std::fs::File::open(path)
+        .map_err(|e| format!("cannot read OBJ {}: {e}", path.display()))?;
     // The text is only read again to point at the offending line of a failed load.
     let text = || std::fs::read(path).unwrap_or_default();
-    let (models, mtls) = tobj::load_obj(path, &tobj::GPU_LOAD_OPTIONS).map_err(|e| {
+    // `mtllib` names resolve next to the OBJ, as tobj::load_obj resolves them.
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let note = RefCell::new(None);
+    let mut reader = std::io::BufReader::new(file);
+    let loaded = tobj::load_obj_buf(&mut reader, &tobj::GPU_LOAD_OPTIONS, |mtl| {
+        let mtl_path = dir.join(mtl);
+        let bytes = std::fs::read(&mtl_path).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        load_mtl_checked(&bytes, &mtl_path, &note)
+    });
+    let (models, mtls) = loaded.map_err(|e| {
         format!(
             "cannot load OBJ {}: {e}",
             at_line(path, &text(), Problem::Load(&e))
         )
     })?;
+    let mtls = mtls.map_err(|e| note.take().unwrap_or_else(|| e.to_string()));
     convert(path, models, mtls, override_material).map_err(|e| e.located(path, &text()))
+}
+
+/// `tobj::load_mtl_buf`, after looking for what makes tobj 4.0.5 panic instead of failing: a
+/// colour line (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than three numbers unwraps a short Vec.
+/// Such a line fails like any malformed MTL, and `note` gets its `file:line` for the warning.
+fn load_mtl_checked(
+    bytes: &[u8],
+    mtl_path: &Path,
+    note: &RefCell<Option<String>>,
+) -> tobj::MTLLoadResult {
+    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line = String::from_utf8_lossy(raw);
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next()
+            && words.count() < 3
+        {
+            *note.borrow_mut() = Some(format!(
+                "{}:{}: `{key}` needs three numbers",
+                mtl_path.display(),
+                i + 1
+            ));
+            return Err(tobj::LoadError::MaterialParseError);
+        }
+    }
+    tobj::load_mtl_buf(&mut &bytes[..])
 }
 
 /// The same validation as a scene's `type = "obj"` shape, on an OBJ (and optionally its MTL)
 /// held in memory; every `mtllib` resolves to `mtl`. `name` only labels messages. For fuzzing
 /// and tests: the scene loader itself reads files with [`crate::load_scene`].
 pub fn load_obj_bytes(obj: &[u8], mtl: Option<&[u8]>, name: &Path) -> Result<LoadedObj, String> {
+    let note = RefCell::new(None);
     let (models, mtls) =
-        tobj::load_obj_buf(&mut &obj[..], &tobj::GPU_LOAD_OPTIONS, |_| match mtl {
-            Some(bytes) => tobj::load_mtl_buf(&mut &bytes[..]),
+        tobj::load_obj_buf(&mut &obj[..], &tobj::GPU_LOAD_OPTIONS, |p| match mtl {
+            Some(bytes) => load_mtl_checked(bytes, p, &note),
             None => Err(tobj::LoadError::OpenFileFailed),
         })
         .map_err(|e| {
@@ -49,6 +88,7 @@ pub fn load_obj_bytes(obj: &[u8], mtl: Option<&[u8]>, name: &Path) -> Result<Loa
                 at_line(name, obj, Problem::Load(&e))
             )
         })?;
+    let mtls = mtls.map_err(|e| note.take().unwrap_or_else(|| e.to_string()));
     convert(name, models, mtls, None).map_err(|e| e.located(name, obj))
 }
 
@@ -161,7 +201,7 @@ fn find_line(text: &[u8], problem: Problem) -> Option<usize> {
 fn convert(
     path: &Path,
     models: Vec<tobj::Model>,
-    mtls: Result<Vec<tobj::Material>, tobj::LoadError>,
+    mtls: Result<Vec<tobj::Material>, String>,
     override_material: Option<MaterialId>,
 ) -> Result<LoadedObj, ConvertError> {
     let mut warnings = Vec::new();
