@@ -14,7 +14,7 @@ pub fn resolve(
         ..EstimatorConfig::default()
     };
     if let Some(n) = a.eye_samples {
-        cfg.eye.samples = n;
+        cfg.eye.fix_samples(n);
     }
     let list = cfg
         .validate()

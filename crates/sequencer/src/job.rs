@@ -321,7 +321,7 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         .map(|e| e.get_ref().clone())
         .unwrap_or_default();
     if let Some(n) = o.eye_samples {
-        est_cfg.eye.samples = n;
+        est_cfg.eye.fix_samples(n);
     }
     let estimators = match est_cfg.validate() {
         Ok(l) => l,

@@ -198,6 +198,14 @@ pub fn job_settings(job: &Job) -> std::collections::BTreeMap<String, String> {
     put("degree", job.adaptation.degree.to_string());
     put("eye_samples", job.estimator_config.eye.samples.to_string());
     put(
+        "eye_min_samples",
+        job.estimator_config.eye.min_samples().to_string(),
+    );
+    put(
+        "eye_target_std_err_uv",
+        job.estimator_config.eye.target_std_err_uv.to_string(),
+    );
+    put(
         "eye_common_random_numbers",
         job.estimator_config.eye.common_random_numbers.to_string(),
     );

@@ -25,8 +25,11 @@ use std::f32::consts::PI;
 /// Sensor parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EyeSettings {
-    /// Sensor paths per frame (estimators.md §10: 16 384).
+    /// Most sensor paths per frame (estimators.md §10: 16 384).
     pub samples: u32,
+    /// Paths traced before the caller's stopping rule is first asked (see [`eye_sensor`]);
+    /// `min_samples >= samples` gives a fixed budget.
+    pub min_samples: u32,
     /// Common random numbers across frames (default true).
     pub common_random_numbers: bool,
     /// The `eye_fov` ablation: only directions inside the camera frustum count.
@@ -38,6 +41,7 @@ impl Default for EyeSettings {
     fn default() -> Self {
         EyeSettings {
             samples: 16_384,
+            min_samples: 16_384,
             common_random_numbers: true,
             fov_only: false,
             seed: 0,
@@ -66,6 +70,9 @@ struct Partial {
 /// Samples per parallel task; fixed so that the reduction order never depends on threads.
 const CHUNK: u32 = 256;
 
+/// Paths added between two consultations of the stopping rule (a multiple of [`CHUNK`]).
+pub const EYE_ROUND: u32 = 2048;
+
 /// Direction with cos θ = μ around `axis` drawn from the cardioid pdf (1 + cos θ)/(4π).
 #[inline]
 pub fn sample_cardioid(u: [f32; 2]) -> (f32, f32) {
@@ -73,13 +80,38 @@ pub fn sample_cardioid(u: [f32; 2]) -> (f32, f32) {
     (mu, 2.0 * PI * u[1])
 }
 
-/// Estimates the eye sensor at `view.position`, pole on `view.forward`.
+/// Estimates the eye sensor at `view.position`, pole on `view.forward`, with a fixed budget of
+/// `settings.samples` paths.
 pub fn eye_sensor(
     scene: &SceneData,
     view: &View,
     settings: &EyeSettings,
     frame: u32,
     path: PathSettings,
+) -> EyeEstimate {
+    let fixed = EyeSettings {
+        min_samples: settings.samples,
+        ..*settings
+    };
+    eye_sensor_until(scene, view, &fixed, frame, path, |_| false)
+}
+
+/// Estimates the eye sensor, stopping early once `done` accepts the running estimate.
+///
+/// Paths are traced in rounds of [`EYE_ROUND`]: after `min_samples` paths and after every round
+/// beyond them, `done` sees the estimate so far (e.g. "standard error of u′v′ below a target")
+/// and ends the reading when it returns true; `samples` caps the total. Every path is a pure
+/// function of its index and partial sums are folded in index order, so where the reading stops,
+/// and its bits, never depend on the thread count. (Stopping on the reading's own error estimate
+/// correlates the two slightly; with thousands of paths before the first check this bias is far
+/// below the noise.)
+pub fn eye_sensor_until(
+    scene: &SceneData,
+    view: &View,
+    settings: &EyeSettings,
+    frame: u32,
+    path: PathSettings,
+    done: impl Fn(&EyeEstimate) -> bool,
 ) -> EyeEstimate {
     let key = if settings.common_random_numbers {
         hash_key(&[settings.seed, 0xE7E_5E45, 0])
@@ -132,31 +164,49 @@ pub fn eye_sensor(
         }
         x.is_finite().then_some(x)
     };
-    let chunks = settings.samples.div_ceil(CHUNK);
-    let partials: Vec<Partial> = (0..chunks)
-        .into_par_iter()
-        .map(|c| {
-            let mut p = Partial::default();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(settings.samples) {
-                match one(i) {
-                    Some(x) => {
-                        let v = Vec3::from(x).as_dvec3();
-                        p.sum += v;
-                        p.outer += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
-                        p.n += 1;
-                    }
-                    None => p.invalid += 1,
+    let chunk_partial = |c: u32| {
+        let mut p = Partial::default();
+        for i in c * CHUNK..((c + 1) * CHUNK).min(settings.samples) {
+            match one(i) {
+                Some(x) => {
+                    let v = Vec3::from(x).as_dvec3();
+                    p.sum += v;
+                    p.outer += DMat3::from_cols(v * v.x, v * v.y, v * v.z);
+                    p.n += 1;
                 }
+                None => p.invalid += 1,
             }
-            p
-        })
-        .collect();
-    let total = partials.iter().fold(Partial::default(), |a, p| Partial {
-        sum: a.sum + p.sum,
-        outer: a.outer + p.outer,
-        n: a.n + p.n,
-        invalid: a.invalid + p.invalid,
-    });
+        }
+        p
+    };
+    let all_chunks = settings.samples.div_ceil(CHUNK);
+    let mut total = Partial::default();
+    let mut next = 0u32;
+    // The first round reaches `min_samples`, later ones add EYE_ROUND paths each.
+    let mut end = settings
+        .min_samples
+        .clamp(1, settings.samples)
+        .div_ceil(CHUNK);
+    loop {
+        let partials: Vec<Partial> = (next..end).into_par_iter().map(chunk_partial).collect();
+        for p in partials {
+            total = Partial {
+                sum: total.sum + p.sum,
+                outer: total.outer + p.outer,
+                n: total.n + p.n,
+                invalid: total.invalid + p.invalid,
+            };
+        }
+        next = end;
+        if next >= all_chunks || done(&summarize(&total)) {
+            break;
+        }
+        end = (next + EYE_ROUND / CHUNK).min(all_chunks);
+    }
+    summarize(&total)
+}
+
+fn summarize(total: &Partial) -> EyeEstimate {
     let n = total.n.max(1) as f64;
     let mean = total.sum / n;
     let m = DMat3::from_cols(mean * mean.x, mean * mean.y, mean * mean.z);

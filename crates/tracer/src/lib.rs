@@ -19,7 +19,10 @@ mod scene_data;
 
 pub use crate::accel::{Accel, Hit, InputTri, TriInfo};
 pub use crate::bsdf::{Bsdf, BsdfSample};
-pub use crate::eye::{EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, sample_cardioid};
+pub use crate::eye::{
+    EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
+    sample_cardioid,
+};
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render};
 pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
 pub use crate::lights::{LightSet, luminance};

@@ -131,10 +131,24 @@ fn setup_line(run: &JobRun) -> String {
         j.height,
         j.spp,
         j.path_settings.max_depth,
-        j.estimator_config.eye.samples,
+        eye_budget(&j.estimator_config.eye),
         run.shots.len(),
         j.adaptation.degree
     )
+}
+
+/// The eye sensor's budget as RESULTS.md states it.
+fn eye_budget(e: &crate::adapt::EyeOptions) -> String {
+    if e.target_std_err_uv > 0.0 && e.min_samples() < e.samples {
+        format!(
+            "{}–{} (until σ(u′v′) ≤ {:e})",
+            e.min_samples(),
+            e.samples,
+            e.target_std_err_uv
+        )
+    } else {
+        e.samples.to_string()
+    }
 }
 
 /// The emissive materials' common emission colour (the scene's light colour).
