@@ -20,6 +20,17 @@ pub struct AreaTri {
     pub emission: Vec3A,
 }
 
+/// Two emissive triangles that together form a parallelogram (a quad light split along a
+/// diagonal): sampled as one, `o + u·e1 + v·e2` for (u, v) in the unit square, so that a
+/// stratified 2-D sample stays stratified over the whole quad instead of being dealt out to
+/// its halves by the light-picking number.
+#[derive(Clone, Copy, Debug)]
+pub struct Parallelogram {
+    pub o: Vec3A,
+    pub e1: Vec3A,
+    pub e2: Vec3A,
+}
+
 #[derive(Clone, Copy, Debug)]
 pub enum DeltaLight {
     Point {
@@ -87,6 +98,9 @@ pub struct LightSample {
 
 pub struct LightSet {
     pub area: Vec<AreaTri>,
+    /// For each area triangle, its parallelogram in `quads` (or `u32::MAX`).
+    quad_of: Vec<u32>,
+    quads: Vec<Parallelogram>,
     pub deltas: Vec<DeltaLight>,
     pub env: Option<Vec3A>,
     /// Cumulative selection weights over [area..., deltas..., env].
@@ -147,6 +161,7 @@ impl LightSet {
                 }
             })
             .collect();
+        let (quad_of, quads) = pair_parallelograms(&area);
         let env = env.filter(|e| e.max_element() > 0.0);
         let mut weights: Vec<f64> = area
             .iter()
@@ -177,6 +192,8 @@ impl LightSet {
         }
         LightSet {
             area,
+            quad_of,
+            quads,
             deltas,
             env,
             cdf,
@@ -232,8 +249,19 @@ impl LightSet {
         let n_area = self.area.len();
         if i < n_area {
             let a = &self.area[i];
-            let su = u[0].sqrt();
-            let y = a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1]);
+            // Within a parallelogram pair both halves have the same density p_i / area_i
+            // (selection is proportional to area × luminance, and their emission is equal), so
+            // sampling the pair uniformly leaves every pdf below unchanged.
+            let y = match self.quad_of[i] {
+                u32::MAX => {
+                    let su = u[0].sqrt();
+                    a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1])
+                }
+                q => {
+                    let q = &self.quads[q as usize];
+                    q.o + q.e1 * u[0] + q.e2 * u[1]
+                }
+            };
             let d = y - x;
             let d2 = d.length_squared();
             let dist = d2.sqrt();
@@ -283,6 +311,11 @@ impl LightSet {
         }
     }
 
+    /// Number of area-light triangle pairs sampled as parallelograms.
+    pub fn parallelogram_count(&self) -> usize {
+        self.quads.len()
+    }
+
     /// Total luminous power of each light as the `dominant` estimator needs it:
     /// (emission colour, flux in Y units), area lights grouped by emission colour.
     pub fn fluxes(&self) -> Vec<(Vec3A, f64)> {
@@ -310,5 +343,157 @@ impl LightSet {
             out.push((e, self.cdf[i] - lo));
         }
         out
+    }
+}
+
+/// Finds consecutive emissive triangles that form a parallelogram with equal emission and
+/// facing: they share two vertices (the diagonal), and the two others mirror each other across
+/// its midpoint. Meshes list a quad's two triangles next to each other (OBJ, PLY, the built-in
+/// shapes), so looking at neighbours finds them without a search.
+fn pair_parallelograms(area: &[AreaTri]) -> (Vec<u32>, Vec<Parallelogram>) {
+    let mut quad_of = vec![u32::MAX; area.len()];
+    let mut quads = Vec::new();
+    let verts = |a: &AreaTri| [a.v0, a.v0 + a.e1, a.v0 + a.e2];
+    let mut i = 0;
+    while i + 1 < area.len() {
+        let (a, b) = (&area[i], &area[i + 1]);
+        let found = (a.emission == b.emission
+            && a.n.dot(b.n) > 1.0 - 1e-6
+            && (a.area - b.area).abs() <= 1e-5 * a.area.max(b.area))
+        .then(|| {
+            let (va, vb) = (verts(a), verts(b));
+            let shared: Vec<Vec3A> = va.iter().copied().filter(|v| vb.contains(v)).collect();
+            if shared.len() != 2 {
+                return None;
+            }
+            let x = va.iter().copied().find(|v| !shared.contains(v))?;
+            let y = vb.iter().copied().find(|v| !shared.contains(v))?;
+            let scale = (shared[0] - shared[1]).length();
+            ((x + y - shared[0] - shared[1]).length() <= 1e-5 * scale).then_some(Parallelogram {
+                o: x,
+                e1: shared[0] - x,
+                e2: shared[1] - x,
+            })
+        })
+        .flatten();
+        match found {
+            Some(q) => {
+                quad_of[i] = quads.len() as u32;
+                quad_of[i + 1] = quads.len() as u32;
+                quads.push(q);
+                i += 2;
+            }
+            None => i += 1,
+        }
+    }
+    (quad_of, quads)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::{SampleStream, hash_key};
+
+    /// A square light of side `s` at height `h` above the origin, facing down, as two triangles
+    /// split along either diagonal.
+    fn square_light(s: f32, h: f32, other_diagonal: bool) -> Vec<InputTri> {
+        let c = |x: f32, z: f32| Vec3A::new(x, h, z);
+        let (p0, p1, p2, p3) = (
+            c(-s / 2.0, -s / 2.0),
+            c(s / 2.0, -s / 2.0),
+            c(s / 2.0, s / 2.0),
+            c(-s / 2.0, s / 2.0),
+        );
+        // Winding so that e1 × e2 points down (−y): the emitting side faces the origin.
+        let tris = if other_diagonal {
+            [[p0, p1, p3], [p1, p2, p3]]
+        } else {
+            [[p0, p1, p2], [p0, p2, p3]]
+        };
+        tris.iter()
+            .map(|v| InputTri {
+                v: *v,
+                n: None,
+                material: 0,
+                light: 0,
+            })
+            .collect()
+    }
+
+    /// Irradiance at the origin by light sampling, with `n` stratified samples.
+    fn irradiance(lights: &LightSet, n: u32) -> f64 {
+        let key = hash_key(&[7]);
+        let normal = Vec3A::Y;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            let mut st = SampleStream::new(key, i);
+            let u_pick = st.next_1d();
+            let _ = st.next_1d();
+            let u = st.next_2d();
+            if let Some(ls) = lights.sample(Vec3A::ZERO, u_pick, u) {
+                sum += (ls.li.x * ls.wi.dot(normal).max(0.0) / ls.pdf) as f64;
+            }
+        }
+        sum / n as f64
+    }
+
+    #[test]
+    fn quads_are_sampled_as_parallelograms_with_unchanged_density() {
+        // Closed form: four s/2 × s/2 rectangles with a corner above the receiver, each of form
+        // factor (1/2π)[A/√(1+A²)·atan(B/√(1+A²)) + B/√(1+B²)·atan(A/√(1+B²))], A = B = s/2h.
+        let (s, h) = (1.0f32, 0.7f32);
+        let a = (s / (2.0 * h)) as f64;
+        let q = (1.0 + a * a).sqrt();
+        let f = (2.0 * a / q * (a / q).atan()) / (2.0 * std::f64::consts::PI);
+        let exact = std::f64::consts::PI * 4.0 * f; // L = 1
+        for other in [false, true] {
+            let tris = square_light(s, h, other);
+            let emission = [Vec3A::ONE];
+            let lights = LightSet::build(&tris, &emission, &[], None, 10.0);
+            assert_eq!(lights.parallelogram_count(), 1, "diagonal variant {other}");
+            let e = irradiance(&lights, 1024);
+            assert!((e / exact - 1.0).abs() < 2e-3, "E {e} vs exact {exact}");
+        }
+        // Two triangles that are not a parallelogram stay triangles.
+        let mut tris = square_light(s, h, false);
+        tris[1].v[2] += Vec3A::new(0.1, 0.0, 0.0);
+        let lights = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        assert_eq!(lights.parallelogram_count(), 0);
+    }
+
+    #[test]
+    fn a_parallelogram_is_less_noisy_than_its_halves() {
+        // The same 256 stratified samples per estimate, 64 independent estimates: pairing the
+        // halves must not add variance (it removes the noise of dealing samples to halves).
+        let tris = square_light(1.0, 0.3, false);
+        let paired = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        let mut halves = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        halves.quad_of.iter_mut().for_each(|q| *q = u32::MAX);
+        let spread = |l: &LightSet| {
+            let xs: Vec<f64> = (0..64u64)
+                .map(|k| {
+                    let key = hash_key(&[k, 99]);
+                    let mut sum = 0.0;
+                    for i in 0..256 {
+                        let mut st = SampleStream::new(key, i);
+                        let u_pick = st.next_1d();
+                        let _ = st.next_1d();
+                        let u = st.next_2d();
+                        if let Some(ls) = l.sample(Vec3A::ZERO, u_pick, u) {
+                            sum += (ls.li.x * ls.wi.y.max(0.0) / ls.pdf) as f64;
+                        }
+                    }
+                    sum / 256.0
+                })
+                .collect();
+            let m = xs.iter().sum::<f64>() / xs.len() as f64;
+            (xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / 63.0).sqrt() / m
+        };
+        let (p, h) = (spread(&paired), spread(&halves));
+        eprintln!("relative spread of 256-sample estimates: paired {p:.2e}, halves {h:.2e}");
+        assert!(
+            p < 0.5 * h,
+            "relative spread paired {p:.2e} vs halves {h:.2e}"
+        );
     }
 }
