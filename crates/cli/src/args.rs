@@ -228,4 +228,11 @@ pub struct BenchArgs {
     /// Timed repetitions (the median is reported).
     #[arg(long, default_value_t = 3)]
     pub runs: u32,
+    /// Instead of rendering: build the BVH of a generated mesh of about this many triangles
+    /// (a displaced terrain) and report build time, memory and ray throughput.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000_000))]
+    pub bvh_triangles: Option<u32>,
+    /// With --bvh-triangles: the obvhs preset (default: the renderer's own choice for the size).
+    #[arg(long, value_parser = ["fastest", "very_fast", "fast", "medium", "slow", "very_slow"])]
+    pub bvh_preset: Option<String>,
 }

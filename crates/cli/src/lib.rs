@@ -6,6 +6,7 @@
 mod adapt_cli;
 mod args;
 mod cmd_bench;
+mod cmd_bench_bvh;
 mod cmd_paper;
 mod cmd_render;
 mod cmd_report;
@@ -38,6 +39,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
     }
     match cli.command {
         Command::Render(a) => cmd_render::run(*a),
+        Command::Bench(a) if a.bvh_triangles.is_some() => cmd_bench_bvh::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Sequence(a) => cmd_sequence::run(*a),
         Command::Plan(a) => cmd_sequence::plan(*a),

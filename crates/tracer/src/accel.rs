@@ -55,8 +55,26 @@ pub struct InputTri {
     pub light: u32,
 }
 
+/// The obvhs build preset for a scene of `n` triangles. Quality pays off only while the build
+/// is cheap next to rendering: `medium_build` up to 256k triangles, `fast_build` above, which
+/// keeps a 1M-triangle build under a second on 2 cores (`eyeadapt bench --bvh-triangles`,
+/// BENCHMARKS.md).
+pub fn build_params(n: usize) -> BvhBuildParams {
+    if n <= 256 * 1024 {
+        BvhBuildParams::medium_build()
+    } else {
+        BvhBuildParams::fast_build()
+    }
+}
+
 impl Accel {
+    /// Builds with the preset [`build_params`] picks for the size.
     pub fn build(input: &[InputTri]) -> Accel {
+        Accel::build_with(input, build_params(input.len()))
+    }
+
+    /// Builds with an explicit obvhs preset.
+    pub fn build_with(input: &[InputTri], params: BvhBuildParams) -> Accel {
         let mut kept = Vec::with_capacity(input.len());
         let mut degenerate = 0;
         for t in input {
@@ -86,11 +104,7 @@ impl Accel {
             lo = Vec3A::ZERO;
             hi = Vec3A::ZERO;
         }
-        let bvh = build_cwbvh_from_tris(
-            &tris,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
+        let bvh = build_cwbvh_from_tris(&tris, params, &mut Duration::default());
         let mut normals = Vec::new();
         let mut info = Vec::with_capacity(bvh.primitive_indices.len());
         let mut bvh_tris = Vec::with_capacity(bvh.primitive_indices.len());
@@ -160,6 +174,11 @@ impl Accel {
         let ray = Ray::new(origin, dir, 0.0, tmax);
         self.bvh
             .ray_traverse_miss(ray, |r, slot| self.tris[slot].intersect(r))
+    }
+
+    /// The obvhs structure itself (for diagnostics and the determinism tests).
+    pub fn bvh(&self) -> &CwBvh {
+        &self.bvh
     }
 
     pub fn triangle_count(&self) -> usize {

@@ -17,7 +17,7 @@ mod microfacet;
 mod sampler;
 mod scene_data;
 
-pub use crate::accel::{Accel, Hit, InputTri, TriInfo};
+pub use crate::accel::{Accel, Hit, InputTri, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
 pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
@@ -28,3 +28,4 @@ pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
 pub use crate::lights::{LightSet, luminance};
 pub use crate::sampler::{SampleStream, hash_key, mix64};
 pub use crate::scene_data::SceneData;
+pub use obvhs::BvhBuildParams;
