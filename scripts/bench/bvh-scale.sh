@@ -20,10 +20,9 @@ while [ $# -gt 0 ]; do
         *) echo "bvh-scale.sh: unknown argument $1" >&2; exit 2 ;;
     esac
 done
-if [ -z "$BIN" ]; then
-    (cd "$REPO" && cargo build --release --bin eyeadapt >&2)
-    BIN="$REPO/target/release/eyeadapt"
-fi
+# shellcheck source=scripts/bench/common.sh
+. "$HERE/common.sh"
+eyeadapt_binary "$BIN"
 OUT="$(mktemp)"
 trap 'rm -f "$OUT"' EXIT
 {
@@ -54,15 +53,5 @@ trap 'rm -f "$OUT"' EXIT
     echo "preset 'default' = eyeadapt's choice for the size (crates/tracer/src/accel.rs, build_params)."
 } | tee "$OUT"
 if [ -n "$MD" ]; then
-    {
-        echo
-        echo "## BVH scale, $(date -u '+%Y-%m-%d %H:%M') UTC, eyeadapt $(git -C "$REPO" rev-parse --short HEAD)"
-        echo
-        echo "\`scripts/bench/bvh-scale.sh --triangles $N --runs $RUNS\`"
-        echo
-        echo '```text'
-        cat "$OUT"
-        echo '```'
-    } >>"$MD"
-    echo "appended to $MD" >&2
+    append_markdown "$MD" "BVH scale" "scripts/bench/bvh-scale.sh --triangles $N --runs $RUNS" "$OUT"
 fi

@@ -21,10 +21,9 @@ while [ $# -gt 0 ]; do
         *) echo "eye-sensor.sh: unknown argument $1" >&2; exit 2 ;;
     esac
 done
-if [ -z "$BIN" ]; then
-    (cd "$REPO" && cargo build --release --bin eyeadapt >&2)
-    BIN="$REPO/target/release/eyeadapt"
-fi
+# shellcheck source=scripts/bench/common.sh
+. "$HERE/common.sh"
+eyeadapt_binary "$BIN"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 OUT="$WORK/report.txt"
@@ -95,15 +94,6 @@ for room in ("white", "orange", "blue"):
         print(f"  {room:<7} {crn:<5} {paths:>7.0f} {rep:>12.2e} {sigma:>27.2e}")
 PY
 if [ -n "$MD" ]; then
-    {
-        echo
-        echo "## Eye sensor cost and noise, $(date -u '+%Y-%m-%d %H:%M') UTC, eyeadapt $(git -C "$REPO" rev-parse --short HEAD)"
-        echo
-        echo "\`scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}\`, load average at the end $(cut -d' ' -f1-3 /proc/loadavg)"
-        echo
-        echo '```text'
-        cat "$OUT"
-        echo '```'
-    } >>"$MD"
-    echo "appended to $MD" >&2
+    append_markdown "$MD" "Eye sensor cost and noise" \
+        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}" "$OUT"
 fi

@@ -1,0 +1,27 @@
+# Shared by the benchmark scripts (sourced, not run): the eyeadapt binary and BENCHMARKS.md.
+
+# Sets BIN to $1 if given, else builds the release binary of the repository $REPO.
+eyeadapt_binary() {
+    if [ -n "${1:-}" ]; then
+        BIN="$1"
+    else
+        (cd "$REPO" && cargo build --release --bin eyeadapt >&2)
+        BIN="$REPO/target/release/eyeadapt"
+    fi
+}
+
+# append_markdown FILE TITLE COMMAND REPORT: appends REPORT (a file) as a dated section.
+append_markdown() {
+    local md="$1" title="$2" cmd="$3" report="$4"
+    {
+        echo
+        echo "## $title, $(date -u '+%Y-%m-%d %H:%M') UTC, eyeadapt $(git -C "$REPO" rev-parse --short HEAD)"
+        echo
+        echo "\`$cmd\`, load average at the end $(cut -d' ' -f1-3 /proc/loadavg)"
+        echo
+        echo '```text'
+        cat "$report"
+        echo '```'
+    } >>"$md"
+    echo "appended to $md" >&2
+}
