@@ -246,7 +246,7 @@ class Tee:
         self.out.flush()
 
 
-def append_markdown(path, label, text, started):
+def append_markdown(path, label, text, started, binary_sha):
     def git(*args):
         r = subprocess.run(["git", "-C", REPO, *args], capture_output=True, text=True)
         return r.stdout.strip() if r.returncode == 0 else "?"
@@ -261,9 +261,9 @@ def append_markdown(path, label, text, started):
             shown.append(x)
     cmd = " ".join(["scripts/bench/vs-mitsuba.sh", *shown])
     with open(path, "a") as f:
-        f.write(f"\n## {label}\n\n{started} UTC, eyeadapt {git('rev-parse', '--short', 'HEAD')}"
-                f"{dirty}, load average at the end {load}.\n\n`{cmd}`\n\n```text\n"
-                f"{text.strip()}\n```\n")
+        f.write(f"\n## {label}\n\n{started} UTC, repository at {git('rev-parse', '--short', 'HEAD')}"
+                f"{dirty}, eyeadapt binary sha256 {binary_sha[:12]}, load average at the end "
+                f"{load}.\n\n`{cmd}`\n\n```text\n{text.strip()}\n```\n")
 
 
 def main():
@@ -423,7 +423,7 @@ def main():
                            bias=stats), f, indent=1)
     shutil.rmtree(ea.tmp, ignore_errors=True)
     if a.markdown:
-        append_markdown(a.markdown, a.label, "".join(sys.stdout.buf), started)
+        append_markdown(a.markdown, a.label, "".join(sys.stdout.buf), started, ea.version())
         log(f"appended to {a.markdown}")
 
 
