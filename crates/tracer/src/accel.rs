@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
-use obvhs::ray::{Ray, RayHit};
+use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
 use obvhs::triangle::Triangle;
 use std::time::Duration;
@@ -141,13 +141,7 @@ impl Accel {
     #[inline]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<Hit> {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        let mut hit = RayHit::none();
-        if !self
-            .bvh
-            .ray_traverse(ray, &mut hit, |r, slot| self.tris[slot].intersect(r))
-        {
-            return None;
-        }
+        let hit = crate::traverse::closest_hit(&self.bvh, &self.tris, ray, |t, r| t.intersect(r))?;
         let slot = hit.primitive_id as usize;
         let info = self.info[slot];
         let p = origin + dir * hit.t;
@@ -172,8 +166,7 @@ impl Accel {
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        self.bvh
-            .ray_traverse_miss(ray, |r, slot| self.tris[slot].intersect(r))
+        crate::traverse::unoccluded(&self.bvh, &self.tris, ray, |t, r| t.intersect(r))
     }
 
     /// The obvhs structure itself (for diagnostics and the determinism tests).

@@ -16,6 +16,7 @@ mod lights;
 mod microfacet;
 mod sampler;
 mod scene_data;
+mod traverse;
 
 pub use crate::accel::{Accel, Hit, InputTri, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
