@@ -55,6 +55,8 @@ fn bvh_bench_reports_every_figure() {
     );
     for key in [
         "build_s",
+        "build_min_s",
+        "obvhs_s",
         "mtris_per_s",
         "memory_bytes_per_mtri",
         "peak_rss_bytes",

@@ -14,6 +14,8 @@
 # run round-robin over the configurations, so load from others on the shared machine falls on
 # all of them alike; the load average before and after is printed with the table. Columns:
 #   build s       median seconds per Accel::build_with        Mtris/s    triangles / build s
+#   min s         the fastest of the builds (least disturbed by other load)
+#   obvhs s       median seconds of obvhs's build_cwbvh_from_tris alone on the same triangles
 #   MB/Mtris      Accel::memory_bytes() per million triangles (10^6 bytes)
 #   RSS MB/Mtris  peak-RSS (VmHWM) increase of the first build per million triangles (not
 #                 shown below 100k triangles, where it is fixed overhead)
@@ -79,8 +81,9 @@ medians() {
         END {
             # Below 100k triangles the RSS increase is fixed overhead, not a per-triangle cost.
             rss = v["triangles", 1] < 100000 ? "-" : sprintf("%.1f", median("build_rss_bytes_per_mtri") / 1e6)
-            printf "%s %s %s %d %.6f %.3f %.1f %s %.2f %.2f %.2f %.2f\n", v["triangles", 1],
-                v["preset", 1], t, c["build_s"], median("build_s"), median("mtris_per_s"),
+            printf "%s %s %s %d %.6f %.6f %.6f %.3f %.1f %s %.2f %.2f %.2f %.2f\n", v["triangles", 1],
+                v["preset", 1], t, c["build_s"], median("build_s"), median("build_min_s"),
+                median("obvhs_s"), median("mtris_per_s"),
                 median("memory_bytes_per_mtri") / 1e6, rss,
                 median("primary_mrays_per_s"), median("inside_mrays_per_s"),
                 median("closest_mrays_per_s"), median("shadow_mrays_per_s")
@@ -93,25 +96,26 @@ medians() {
     echo "before: $load_before"
     echo "after:  $load_after"
     echo
-    printf '%-9s %-16s %3s %10s %8s %9s %12s %6s %7s %7s %7s\n' triangles preset thr "build s" \
-        Mtris/s MB/Mtris "RSS MB/Mtris" prim inside closest shadow
+    printf '%-9s %-16s %3s %10s %10s %10s %8s %9s %12s %6s %7s %7s %7s\n' triangles preset thr \
+        "build s" "min s" "obvhs s" Mtris/s MB/Mtris "RSS MB/Mtris" prim inside closest shadow
     [ -z "$JSON" ] || echo "[" >"$JSON"
     first=1
     for n in "${sizes[@]}"; do
         for p in "${presets[@]}"; do
             for t in "${threads[@]}"; do
-                read -r tris preset thr reps build rate mem rss prim inside closest shadow \
+                read -r tris preset thr reps build bmin obvhs rate mem rss prim inside closest shadow \
                     <<<"$(medians "$n" "$p" "$t")"
                 label=$preset
                 [ "$p" = default ] && label="default=$preset"
-                printf '%-9s %-16s %3s %10s %8s %9s %12s %6s %7s %7s %7s\n' "$tris" "$label" \
-                    "$thr" "$build" "$rate" "$mem" "$rss" "$prim" "$inside" "$closest" "$shadow"
+                printf '%-9s %-16s %3s %10s %10s %10s %8s %9s %12s %6s %7s %7s %7s\n' "$tris" \
+                    "$label" "$thr" "$build" "$bmin" "$obvhs" "$rate" "$mem" "$rss" "$prim" \
+                    "$inside" "$closest" "$shadow"
                 if [ -n "$JSON" ]; then
                     [ $first = 1 ] || echo "," >>"$JSON"
                     first=0
-                    printf '  {"triangles": %s, "preset": "%s", "renderer_default": %s, "threads": %s, "processes": %s, "build_s": %s, "mtris_per_s": %s, "memory_mb_per_mtri": %s, "build_rss_mb_per_mtri": %s, "primary_mrays_per_s": %s, "inside_mrays_per_s": %s, "closest_mrays_per_s": %s, "shadow_mrays_per_s": %s}' \
+                    printf '  {"triangles": %s, "preset": "%s", "renderer_default": %s, "threads": %s, "processes": %s, "build_s": %s, "build_min_s": %s, "obvhs_s": %s, "mtris_per_s": %s, "memory_mb_per_mtri": %s, "build_rss_mb_per_mtri": %s, "primary_mrays_per_s": %s, "inside_mrays_per_s": %s, "closest_mrays_per_s": %s, "shadow_mrays_per_s": %s}' \
                         "$tris" "$preset" "$([ "$p" = default ] && echo true || echo false)" \
-                        "$thr" "$reps" "$build" "$rate" "$mem" "${rss/#-/null}" "$prim" "$inside" \
+                        "$thr" "$reps" "$build" "$bmin" "$obvhs" "$rate" "$mem" "${rss/#-/null}" "$prim" "$inside" \
                         "$closest" "$shadow" >>"$JSON"
                 fi
             done

@@ -7,8 +7,10 @@ use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_tracer::{Accel, BvhBuildParams, InputTri, build_params, hash_key, mix64};
 use glam::Vec3A;
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::triangle::Triangle;
 use rayon::prelude::*;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// The obvhs presets by the names `--bvh-preset` takes, slowest build last.
 const PRESETS: [(&str, BvhBuildParams); 6] = [
@@ -198,6 +200,15 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let n = a.bvh_triangles.unwrap_or(1_000_000);
     let rss_start = peak_rss();
     let mesh = terrain(n);
+    // For timing obvhs alone; made before the baseline so it does not count as the build's.
+    let obvhs_tris: Vec<Triangle> = mesh
+        .iter()
+        .map(|t| Triangle {
+            v0: t.v[0],
+            v1: t.v[1],
+            v2: t.v[2],
+        })
+        .collect();
     let rss_mesh = peak_rss();
     let params = match a.bvh_preset.as_deref() {
         Some(name) => PRESETS
@@ -218,6 +229,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     // them (about 100k triangles' worth per run); one build per run from 100k triangles up.
     let reps = 100_000usize.div_ceil(mesh.len()).clamp(1, 10_000);
     let mut times = Vec::new();
+    let mut obvhs_times = Vec::new();
     let mut accel = None;
     let mut rss_end = None;
     for run in 0..a.runs.max(1) {
@@ -230,18 +242,35 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
             built
         });
         let s = s / reps as f64;
-        println!("build {}: {:.6} s", run + 1, s);
-        times.push(s);
-        accel = Some(built);
         if run == 0 {
             // Later builds can raise the peak a little through heap fragmentation (the
             // dropped structure's pages), which a renderer building once never sees.
             rss_end = peak_rss();
         }
+        // obvhs alone on the same triangles: the rest of `Accel::build_with` (filtering, the
+        // copy into BVH order, shading data) runs on one thread, so this shows what a preset
+        // can change and what it cannot.
+        let (o, _) = timed(|| {
+            for _ in 0..reps {
+                drop(build_cwbvh_from_tris(
+                    &obvhs_tris,
+                    params,
+                    &mut Duration::default(),
+                ));
+            }
+        });
+        let o = o / reps as f64;
+        println!("build {}: {s:.6} s, of which obvhs {o:.6} s", run + 1);
+        times.push(s);
+        obvhs_times.push(o);
+        accel = Some(built);
     }
     let accel = accel.expect("at least one run");
     times.sort_by(f64::total_cmp);
+    obvhs_times.sort_by(f64::total_cmp);
     let build = times[times.len() / 2];
+    let build_min = times[0];
+    let obvhs = obvhs_times[obvhs_times.len() / 2];
     let tris = accel.triangle_count();
     let per_m = 1e6 / tris as f64;
     let threads = rayon::current_num_threads();
@@ -253,7 +282,8 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let mem = accel.memory_bytes() as f64;
     println!(
         "BVH of {tris} triangles ({threads} threads, obvhs {preset}_build by {policy}): build \
-         median {build:.6} s of {} = {:.2} M triangles/s",
+         median {build:.6} s of {} (fastest {build_min:.6} s) = {:.2} M triangles/s; obvhs alone \
+         {obvhs:.6} s",
         times.len(),
         tris as f64 / build / 1e6
     );
@@ -268,7 +298,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     if let (Some(s), Some(m), Some(e)) = (rss_start, rss_mesh, rss_end) {
         (rss_peak, rss_build) = (e as f64, e.saturating_sub(m) as f64);
         println!(
-            "peak RSS after the first build {:.1} MiB: input mesh +{:.1} MiB, build +{:.1} MiB = {:.1} MiB per million \
+            "peak RSS after the first build {:.1} MiB: input mesh (and its copy for obvhs alone) +{:.1} MiB, build +{:.1} MiB = {:.1} MiB per million \
              triangles",
             mib(rss_peak),
             mib(m.saturating_sub(s) as f64),
@@ -289,7 +319,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     );
     println!(
         "bvh-bench: triangles={tris} threads={threads} preset={preset} runs={} build_s={build:.6} \
-         mtris_per_s={:.3} memory_bytes_per_mtri={:.0} peak_rss_bytes={rss_peak:.0} \
+         build_min_s={build_min:.6} obvhs_s={obvhs:.6} mtris_per_s={:.3} memory_bytes_per_mtri={:.0} peak_rss_bytes={rss_peak:.0} \
          build_rss_bytes_per_mtri={:.0} primary_mrays_per_s={:.3} inside_mrays_per_s={:.3} \
          closest_mrays_per_s={closest_mrays:.3} shadow_mrays_per_s={:.3}",
         times.len(),
