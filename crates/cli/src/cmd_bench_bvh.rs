@@ -1,29 +1,59 @@
-//! `eyeadapt bench --bvh-triangles N`: how the acceleration structure scales. Builds the BVH of
-//! a generated mesh (a displaced terrain of N triangles) and reports build time, memory and
-//! closest-hit and shadow-ray throughput.
+//! `eyeadapt bench --bvh-triangles N`: how the acceleration structure scales (issue 10, goal 4).
+//! Builds the BVH of a generated mesh (a displaced terrain of N triangles) with the
+//! renderer's own `Accel::build_with` (obvhs plus the copy into BVH order), and reports build
+//! time, memory and closest-hit and shadow-ray throughput. The last line, `bvh-bench: key=value
+//! …`, is for scripts (`scripts/bench/bvh-scale.sh`).
 use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_tracer::{Accel, BvhBuildParams, InputTri, build_params, hash_key, mix64};
 use glam::Vec3A;
-use std::time::Instant;
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::triangle::Triangle;
+use rayon::prelude::*;
+use std::time::{Duration, Instant};
 
-/// A k×k grid of quads over [-1, 1]², heights from a few octaves of sines: smooth like a real
-/// scan or terrain, with triangles of similar size, so the BVH sees realistic locality.
+/// The obvhs presets by the names `--bvh-preset` takes, slowest build last.
+const PRESETS: [(&str, BvhBuildParams); 6] = [
+    ("fastest", BvhBuildParams::fastest_build()),
+    ("very_fast", BvhBuildParams::very_fast_build()),
+    ("fast", BvhBuildParams::fast_build()),
+    ("medium", BvhBuildParams::medium_build()),
+    ("slow", BvhBuildParams::slow_build()),
+    ("very_slow", BvhBuildParams::very_slow_build()),
+];
+
+/// The preset's name; `BvhBuildParams` has no `PartialEq`, so the fields are compared through
+/// `Debug`.
+fn preset_name(p: &BvhBuildParams) -> &'static str {
+    let want = format!("{p:?}");
+    PRESETS
+        .iter()
+        .find(|(_, q)| format!("{q:?}") == want)
+        .map_or("custom", |(name, _)| name)
+}
+
+/// Terrain height: a few octaves of sines, smooth like a real scan, with detail at several scales.
+fn height(x: f32, z: f32) -> f32 {
+    0.15 * (3.1 * x + 0.7).sin() * (2.3 * z).cos()
+        + 0.05 * (11.0 * x + 5.0 * z).sin()
+        + 0.02 * (37.0 * x - 23.0 * z).cos()
+}
+
+/// `triangles` triangles of a kx×kz grid of quads over [-1, 1]², displaced by [`height`]:
+/// triangles of similar size with real spatial locality, as a scanned or tessellated model has
+/// (not a random triangle soup, which no scene looks like).
 fn terrain(triangles: u32) -> Vec<InputTri> {
-    let k = ((triangles as f64 / 2.0).sqrt().round() as usize).max(1);
-    let h = |x: f32, z: f32| {
-        0.15 * (3.1 * x + 0.7).sin() * (2.3 * z).cos()
-            + 0.05 * (11.0 * x + 5.0 * z).sin()
-            + 0.02 * (37.0 * x - 23.0 * z).cos()
-    };
+    let quads = (triangles as usize).div_ceil(2).max(1);
+    let kx = ((quads as f64).sqrt().round() as usize).max(1);
+    let kz = quads.div_ceil(kx);
     let p = |i: usize, j: usize| {
-        let x = -1.0 + 2.0 * i as f32 / k as f32;
-        let z = -1.0 + 2.0 * j as f32 / k as f32;
-        Vec3A::new(x, h(x, z), z)
+        let x = -1.0 + 2.0 * i as f32 / kx as f32;
+        let z = -1.0 + 2.0 * j as f32 / kz as f32;
+        Vec3A::new(x, height(x, z), z)
     };
-    let mut out = Vec::with_capacity(2 * k * k);
-    for j in 0..k {
-        for i in 0..k {
+    let mut out = Vec::with_capacity(2 * kx * kz);
+    for j in 0..kz {
+        for i in 0..kx {
             let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
             for v in [[a, c, b], [a, d, c]] {
                 out.push(InputTri {
@@ -35,6 +65,7 @@ fn terrain(triangles: u32) -> Vec<InputTri> {
             }
         }
     }
+    out.truncate(triangles as usize); // the last row may be partial
     out
 }
 
@@ -46,124 +77,258 @@ fn peak_rss() -> Option<u64> {
     Some(kb * 1024)
 }
 
-fn preset(name: &str) -> BvhBuildParams {
-    match name {
-        "fastest" => BvhBuildParams::fastest_build(),
-        "very_fast" => BvhBuildParams::very_fast_build(),
-        "fast" => BvhBuildParams::fast_build(),
-        "slow" => BvhBuildParams::slow_build(),
-        "very_slow" => BvhBuildParams::very_slow_build(),
-        _ => BvhBuildParams::medium_build(),
-    }
+/// Two numbers in [0, 1) from the high and middle bits of a hash.
+fn unit2(r: u64) -> (f32, f32) {
+    let s = 1.0 / (1u64 << 24) as f32;
+    ((r >> 40) as f32 * s, ((r >> 16) & 0xff_ffff) as f32 * s)
 }
 
-/// A uniform direction from two hashed numbers.
+/// A uniform direction from a hash.
 fn direction(r: u64) -> Vec3A {
-    let u = (r >> 40) as f32 / (1u64 << 24) as f32;
-    let v = ((r >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32;
+    let (u, v) = unit2(r);
     let z = 1.0 - 2.0 * u;
     let s = (1.0 - z * z).max(0.0).sqrt();
     let phi = std::f32::consts::TAU * v;
     Vec3A::new(s * phi.cos(), z, s * phi.sin())
 }
 
+/// Seconds for `f` and what it returned.
+fn timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    let t = Instant::now();
+    let r = f();
+    (t.elapsed().as_secs_f64(), r)
+}
+
+/// Ray throughput of one ray set: rays per second and the share that hit (or were unoccluded).
+struct RaySet {
+    rays: u64,
+    seconds: f64,
+    count: usize,
+}
+
+impl RaySet {
+    fn mrays(&self) -> f64 {
+        self.rays as f64 / self.seconds / 1e6
+    }
+    fn percent(&self) -> f64 {
+        100.0 * self.count as f64 / self.rays as f64
+    }
+}
+
+/// The three ray sets, each 2^20 rays, the same on every run and thread count.
+fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
+    const RAYS: u64 = 1 << 20;
+    const SIDE: u64 = 1 << 10;
+    let key = hash_key(&[0xB7B, n as u64]);
+    let (lo, hi) = (accel.bounds_min, accel.bounds_max);
+
+    // Primary-like: a 1024² pinhole camera outside the mesh, above and in front, looking at
+    // its centre, in row order like a renderer's scanlines (coherent rays).
+    let eye = Vec3A::new(0.0, 1.4, 2.4);
+    let fwd = (Vec3A::ZERO - eye).normalize();
+    let right = fwd.cross(Vec3A::Y).normalize();
+    let up = right.cross(fwd);
+    let half = (15.0f32).to_radians().tan(); // a 30° field of view: the mesh fills most of it
+    let (seconds, count) = timed(|| {
+        (0..RAYS as usize)
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| i as u64)
+            .filter(|&i| {
+                let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
+                let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;
+                let d = (fwd + right * (px * half) + up * (py * half)).normalize();
+                accel.intersect(eye, d, f32::INFINITY).is_some()
+            })
+            .count()
+    });
+    let primary = RaySet {
+        rays: RAYS,
+        seconds,
+        count,
+    };
+
+    // Inside: uniform origins in the mesh's bounds, uniform directions, like the bounces of a
+    // path tracer (incoherent rays).
+    let (seconds, count) = timed(|| {
+        (0..RAYS as usize)
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| i as u64)
+            .filter(|&i| {
+                let r = mix64(key ^ i);
+                let (u, v) = unit2(r);
+                let w = unit2(mix64(r ^ 1)).0;
+                let o = lo + (hi - lo) * Vec3A::new(u, v, w);
+                accel
+                    .intersect(o, direction(mix64(r ^ 2)), f32::INFINITY)
+                    .is_some()
+            })
+            .count()
+    });
+    let inside = RaySet {
+        rays: RAYS,
+        seconds,
+        count,
+    };
+
+    // Shadow: segments of length 0.5 from points a little above the terrain, in uniform
+    // directions (next-event estimation's visibility test).
+    let (seconds, count) = timed(|| {
+        (0..RAYS as usize)
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| i as u64)
+            .filter(|&i| {
+                let r = mix64(key ^ (i + RAYS));
+                let (u, v) = unit2(r);
+                let (x, z) = (u * 2.0 - 1.0, v * 2.0 - 1.0);
+                let o = Vec3A::new(x, height(x, z) + 0.02, z);
+                accel.unoccluded(o, direction(mix64(r ^ 3)), 0.5)
+            })
+            .count()
+    });
+    let shadow = RaySet {
+        rays: RAYS,
+        seconds,
+        count,
+    };
+    [primary, inside, shadow]
+}
+
 pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let n = a.bvh_triangles.unwrap_or(1_000_000);
     let rss_start = peak_rss();
     let mesh = terrain(n);
+    // For timing obvhs alone; made before the baseline so it does not count as the build's.
+    let obvhs_tris: Vec<Triangle> = mesh
+        .iter()
+        .map(|t| Triangle {
+            v0: t.v[0],
+            v1: t.v[1],
+            v2: t.v[2],
+        })
+        .collect();
     let rss_mesh = peak_rss();
-    let (params, preset_name) = match a.bvh_preset.as_deref() {
-        Some(p) => (preset(p), p.to_string()),
-        None => (build_params(mesh.len()), "default for the size".to_string()),
+    let params = match a.bvh_preset.as_deref() {
+        Some(name) => PRESETS
+            .iter()
+            .find(|(p, _)| *p == name)
+            .map(|(_, p)| *p)
+            .ok_or_else(|| Failure::Input(format!("unknown BVH preset {name}")))?,
+        None => build_params(mesh.len()),
     };
+    let preset = preset_name(&params);
+    let policy = if a.bvh_preset.is_some() {
+        "--bvh-preset"
+    } else {
+        "the renderer's choice for the size"
+    };
+
+    // Small meshes build in microseconds: repeat them within a timed run so the clock resolves
+    // them (about 100k triangles' worth per run); one build per run from 100k triangles up.
+    let reps = 100_000usize.div_ceil(mesh.len()).clamp(1, 10_000);
     let mut times = Vec::new();
+    let mut obvhs_times = Vec::new();
     let mut accel = None;
+    let mut rss_end = None;
     for run in 0..a.runs.max(1) {
         drop(accel.take()); // the previous structure is not part of this build's peak
-        let t = Instant::now();
-        let built = Accel::build_with(&mesh, params);
-        let s = t.elapsed().as_secs_f64();
-        println!("build {}: {s:.3} s", run + 1);
+        let (s, built) = timed(|| {
+            let mut built = Accel::build_with(&mesh, params);
+            for _ in 1..reps {
+                built = Accel::build_with(&mesh, params);
+            }
+            built
+        });
+        let s = s / reps as f64;
+        if run == 0 {
+            // Later builds can raise the peak a little through heap fragmentation (the
+            // dropped structure's pages), which a renderer building once never sees.
+            rss_end = peak_rss();
+        }
+        // obvhs alone on the same triangles: the rest of `Accel::build_with` (filtering, the
+        // copy into BVH order, shading data) runs on one thread, so this shows what a preset
+        // can change and what it cannot.
+        let (o, _) = timed(|| {
+            for _ in 0..reps {
+                drop(build_cwbvh_from_tris(
+                    &obvhs_tris,
+                    params,
+                    &mut Duration::default(),
+                ));
+            }
+        });
+        let o = o / reps as f64;
+        println!("build {}: {s:.6} s, of which obvhs {o:.6} s", run + 1);
         times.push(s);
+        obvhs_times.push(o);
         accel = Some(built);
     }
     let accel = accel.expect("at least one run");
-    let rss_end = peak_rss();
     times.sort_by(f64::total_cmp);
+    obvhs_times.sort_by(f64::total_cmp);
     let build = times[times.len() / 2];
+    let build_min = times[0];
+    let obvhs = obvhs_times[obvhs_times.len() / 2];
     let tris = accel.triangle_count();
     let per_m = 1e6 / tris as f64;
+    let threads = rayon::current_num_threads();
+    let [primary, inside, shadow] = trace_rays(&accel, n);
+    let closest_mrays =
+        (primary.rays + inside.rays) as f64 / (primary.seconds + inside.seconds) / 1e6;
 
-    // Rays: camera-like rays from above looking down at the terrain, and shadow-like rays
-    // between points near the surface. Deterministic, so every run traces the same set.
-    let rays = 1u64 << 20;
-    let key = hash_key(&[0xB7B, n as u64]);
-    let closest = || {
-        use rayon::prelude::*;
-        (0..rays)
-            .into_par_iter()
-            .filter(|&i| {
-                let r = mix64(key ^ i);
-                let x = (r >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0;
-                let z = ((r >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0;
-                let o = Vec3A::new(x * 0.5, 1.5, z * 0.5);
-                let mut d = direction(mix64(r));
-                d.y = -d.y.abs() - 0.3;
-                accel.intersect(o, d.normalize(), f32::INFINITY).is_some()
-            })
-            .count()
-    };
-    let shadow = || {
-        use rayon::prelude::*;
-        (0..rays)
-            .into_par_iter()
-            .filter(|&i| {
-                let r = mix64(key ^ (i + rays));
-                let x = (r >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0;
-                let z = ((r >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0;
-                let o = Vec3A::new(x, 0.25, z);
-                accel.unoccluded(o, direction(mix64(r)), 0.5)
-            })
-            .count()
-    };
-    let t = Instant::now();
-    let hits = closest();
-    let t_closest = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let free = shadow();
-    let t_shadow = t.elapsed().as_secs_f64();
-
-    let mib = |b: u64| b as f64 / (1024.0 * 1024.0);
+    let mib = |b: f64| b / (1024.0 * 1024.0);
+    let mem = accel.memory_bytes() as f64;
     println!(
-        "BVH of {tris} triangles ({} threads, preset {preset_name}): build median {build:.3} s \
-         of {} = {:.2} M triangles/s",
-        rayon::current_num_threads(),
+        "BVH of {tris} triangles ({threads} threads, obvhs {preset}_build by {policy}): build \
+         median {build:.6} s of {} (fastest {build_min:.6} s) = {:.2} M triangles/s; obvhs alone \
+         {obvhs:.6} s",
         times.len(),
         tris as f64 / build / 1e6
     );
     println!(
-        "structure {:.1} MiB = {:.1} MiB per million triangles (BVH nodes, triangles in BVH \
-         order, shading data)",
-        mib(accel.memory_bytes() as u64),
-        mib(accel.memory_bytes() as u64) * per_m
+        "structure {:.1} MiB = {:.0} bytes = {:.1} MiB per million triangles (BVH nodes, \
+         triangles in BVH order, shading data)",
+        mib(mem),
+        mem * per_m,
+        mib(mem * per_m)
     );
+    let (mut rss_peak, mut rss_build) = (f64::NAN, f64::NAN);
     if let (Some(s), Some(m), Some(e)) = (rss_start, rss_mesh, rss_end) {
+        (rss_peak, rss_build) = (e as f64, e.saturating_sub(m) as f64);
         println!(
-            "peak RSS {:.1} MiB: input mesh +{:.1} MiB, build +{:.1} MiB = {:.1} MiB per \
-             million triangles",
-            mib(e),
-            mib(m.saturating_sub(s)),
-            mib(e.saturating_sub(m)),
-            mib(e.saturating_sub(m)) * per_m
+            "peak RSS after the first build {:.1} MiB: input mesh (and its copy for obvhs alone) +{:.1} MiB, build +{:.1} MiB = {:.1} MiB per million \
+             triangles",
+            mib(rss_peak),
+            mib(m.saturating_sub(s) as f64),
+            mib(rss_build),
+            mib(rss_build * per_m)
         );
     }
     println!(
-        "rays: closest hit {:.2} M rays/s ({:.1} % hit), shadow {:.2} M rays/s ({:.1} % \
+        "rays (2^20 each): primary {:.2} M rays/s ({:.1} % hit), inside {:.2} M rays/s ({:.1} % \
+         hit), both closest-hit sets {closest_mrays:.2} M rays/s; shadow {:.2} M rays/s ({:.1} % \
          unoccluded)",
-        rays as f64 / t_closest / 1e6,
-        100.0 * hits as f64 / rays as f64,
-        rays as f64 / t_shadow / 1e6,
-        100.0 * free as f64 / rays as f64
+        primary.mrays(),
+        primary.percent(),
+        inside.mrays(),
+        inside.percent(),
+        shadow.mrays(),
+        shadow.percent()
+    );
+    println!(
+        "bvh-bench: triangles={tris} threads={threads} preset={preset} runs={} build_s={build:.6} \
+         build_min_s={build_min:.6} obvhs_s={obvhs:.6} mtris_per_s={:.3} memory_bytes_per_mtri={:.0} peak_rss_bytes={rss_peak:.0} \
+         build_rss_bytes_per_mtri={:.0} primary_mrays_per_s={:.3} inside_mrays_per_s={:.3} \
+         closest_mrays_per_s={closest_mrays:.3} shadow_mrays_per_s={:.3}",
+        times.len(),
+        tris as f64 / build / 1e6,
+        mem * per_m,
+        rss_build * per_m,
+        primary.mrays(),
+        inside.mrays(),
+        shadow.mrays()
     );
     Ok(())
 }

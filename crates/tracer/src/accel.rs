@@ -58,7 +58,14 @@ pub struct InputTri {
 /// The obvhs build preset for a scene of `n` triangles. Quality pays off only while the build
 /// is cheap next to rendering: `medium_build` up to 256k triangles, `fast_build` above, which
 /// keeps a 1M-triangle build under a second on 2 cores (`eyeadapt bench --bvh-triangles`,
-/// BENCHMARKS.md).
+/// `scripts/bench/bvh-scale.sh`, BENCHMARKS.md).
+///
+/// Measured 2026-11-22 on the shared 2-core machine (load 3-4, so a 2-thread run often got one
+/// core), 1M-triangle terrain, medians of the whole `Accel::build_with` (obvhs + BVH-order
+/// copy): `fast` 0.78-0.93 s, `medium` 0.82-1.04 s (over budget under load), `very_fast`
+/// 0.69-0.75 s, `fastest` 0.71-0.80 s. Closest-hit rays: `fast` within noise of `medium`, 3-8 %
+/// ahead of `very_fast`, 10-15 % ahead of `fastest`. At the Cornell box's 36 triangles every
+/// preset builds in under 40 µs and traces alike, so small scenes keep `medium`.
 pub fn build_params(n: usize) -> BvhBuildParams {
     if n <= 256 * 1024 {
         BvhBuildParams::medium_build()
