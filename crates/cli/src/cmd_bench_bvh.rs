@@ -115,9 +115,26 @@ impl RaySet {
     }
 }
 
+const RAYS: u64 = 1 << 20;
+
+/// Times `hits(i)` for i in 0..RAYS in parallel and counts the rays it reports as hits.
+fn ray_set(hits: impl Fn(u64) -> bool + Sync) -> RaySet {
+    let (seconds, count) = timed(|| {
+        (0..RAYS as usize)
+            .into_par_iter()
+            .with_min_len(1024)
+            .filter(|&i| hits(i as u64))
+            .count()
+    });
+    RaySet {
+        rays: RAYS,
+        seconds,
+        count,
+    }
+}
+
 /// The three ray sets, each 2^20 rays, the same on every run and thread count.
 fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
-    const RAYS: u64 = 1 << 20;
     const SIDE: u64 = 1 << 10;
     let key = hash_key(&[0xB7B, n as u64]);
     let (lo, hi) = (accel.bounds_min, accel.bounds_max);
@@ -129,70 +146,34 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     let right = fwd.cross(Vec3A::Y).normalize();
     let up = right.cross(fwd);
     let half = (15.0f32).to_radians().tan(); // a 30° field of view: the mesh fills most of it
-    let (seconds, count) = timed(|| {
-        (0..RAYS as usize)
-            .into_par_iter()
-            .with_min_len(1024)
-            .map(|i| i as u64)
-            .filter(|&i| {
-                let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
-                let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;
-                let d = (fwd + right * (px * half) + up * (py * half)).normalize();
-                accel.intersect(eye, d, f32::INFINITY).is_some()
-            })
-            .count()
+    let primary = ray_set(|i| {
+        let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
+        let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;
+        let d = (fwd + right * (px * half) + up * (py * half)).normalize();
+        accel.intersect(eye, d, f32::INFINITY).is_some()
     });
-    let primary = RaySet {
-        rays: RAYS,
-        seconds,
-        count,
-    };
 
     // Inside: uniform origins in the mesh's bounds, uniform directions, like the bounces of a
     // path tracer (incoherent rays).
-    let (seconds, count) = timed(|| {
-        (0..RAYS as usize)
-            .into_par_iter()
-            .with_min_len(1024)
-            .map(|i| i as u64)
-            .filter(|&i| {
-                let r = mix64(key ^ i);
-                let (u, v) = unit2(r);
-                let w = unit2(mix64(r ^ 1)).0;
-                let o = lo + (hi - lo) * Vec3A::new(u, v, w);
-                accel
-                    .intersect(o, direction(mix64(r ^ 2)), f32::INFINITY)
-                    .is_some()
-            })
-            .count()
+    let inside = ray_set(|i| {
+        let r = mix64(key ^ i);
+        let (u, v) = unit2(r);
+        let w = unit2(mix64(r ^ 1)).0;
+        let o = lo + (hi - lo) * Vec3A::new(u, v, w);
+        accel
+            .intersect(o, direction(mix64(r ^ 2)), f32::INFINITY)
+            .is_some()
     });
-    let inside = RaySet {
-        rays: RAYS,
-        seconds,
-        count,
-    };
 
     // Shadow: segments of length 0.5 from points a little above the terrain, in uniform
     // directions (next-event estimation's visibility test).
-    let (seconds, count) = timed(|| {
-        (0..RAYS as usize)
-            .into_par_iter()
-            .with_min_len(1024)
-            .map(|i| i as u64)
-            .filter(|&i| {
-                let r = mix64(key ^ (i + RAYS));
-                let (u, v) = unit2(r);
-                let (x, z) = (u * 2.0 - 1.0, v * 2.0 - 1.0);
-                let o = Vec3A::new(x, height(x, z) + 0.02, z);
-                accel.unoccluded(o, direction(mix64(r ^ 3)), 0.5)
-            })
-            .count()
+    let shadow = ray_set(|i| {
+        let r = mix64(key ^ (i + RAYS));
+        let (u, v) = unit2(r);
+        let (x, z) = (u * 2.0 - 1.0, v * 2.0 - 1.0);
+        let o = Vec3A::new(x, height(x, z) + 0.02, z);
+        accel.unoccluded(o, direction(mix64(r ^ 3)), 0.5)
     });
-    let shadow = RaySet {
-        rays: RAYS,
-        seconds,
-        count,
-    };
     [primary, inside, shadow]
 }
 
