@@ -1,23 +1,25 @@
 #!/usr/bin/env bash
 # The eye sensor's cost and noise (issue 10, goal 3).
 #
-#   scripts/bench/eye-sensor.sh [--eyeadapt BIN] [--frames SPEC] [--markdown FILE]
+#   scripts/bench/eye-sensor.sh [--eyeadapt BIN] [--frames SPEC | --static-only] [--markdown FILE]
 #
 # 1. Cost: renders the demo job (default all 121 frames; --frames 0-120:10 for a quick look)
 #    and reads the sensor's share of each frame's time from the log ("eye sensor … % of the
 #    frame"), with the paths it used and its standard error of u′v′ from adaptation.csv.
-# 2. Noise floor: a static camera in each of the demo's three rooms, 25 frames each, eye
-#    estimator only, once with common random numbers off (frame-to-frame σ(u′v′) is then the
-#    Monte-Carlo noise) and once on (the default: the reading repeats exactly).
+# 2. Noise floor: a static camera in each of the demo's three rooms and in its two doorways
+#    (looking from one room into the next), 25 frames each, eye estimator only, once with
+#    common random numbers off (frame-to-frame σ(u′v′) is then the Monte-Carlo noise) and once
+#    on (the default: the reading repeats exactly).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
-BIN="" FRAMES="" MD=""
+BIN="" FRAMES="" MD="" DEMO=1
 while [ $# -gt 0 ]; do
     case "$1" in
         --eyeadapt) BIN="$2"; shift 2 ;;
         --frames) FRAMES="$2"; shift 2 ;;
         --markdown) MD="$2"; shift 2 ;;
+        --static-only) DEMO=0; shift ;;
         *) echo "eye-sensor.sh: unknown argument $1" >&2; exit 2 ;;
     esac
 done
@@ -28,14 +30,18 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 OUT="$WORK/report.txt"
 
-args=(sequence --out "$WORK/demo" --log-format plain)
-[ -n "$FRAMES" ] && args+=(--frames "$FRAMES")
-start=$(date +%s.%N)
-"$BIN" "${args[@]}" >"$WORK/demo.log" 2>&1
-end=$(date +%s.%N)
+start=0 end=0
+if [ "$DEMO" = 1 ]; then
+    args=(sequence --out "$WORK/demo" --log-format plain)
+    [ -n "$FRAMES" ] && args+=(--frames "$FRAMES")
+    start=$(date +%s.%N)
+    "$BIN" "${args[@]}" >"$WORK/demo.log" 2>&1
+    end=$(date +%s.%N)
+fi
 
 for room in "white 0.6,1.6,-0.6 -0.6,0.9,-4.0" "orange 0.2,1.6,-7.2 0.0,1.5,-12.0" \
-    "blue -0.1,1.6,-11.0 0.3,1.45,-14.5"; do
+    "blue -0.1,1.6,-11.0 0.3,1.45,-14.5" "doorway1 0.0,1.6,-4.4 0.0,1.5,-9.0" \
+    "doorway2 0.0,1.6,-9.6 0.0,1.5,-14.0"; do
     read -r name pos look <<<"$room"
     for crn in false true; do
         cat >"$WORK/static-$name-$crn.toml" <<TOML
@@ -64,25 +70,28 @@ python3 - "$WORK" "$FRAMES" "$start" "$end" <<'PY' | tee "$OUT"
 import csv, math, os, re, statistics, sys
 work, frames = sys.argv[1], sys.argv[2] or "all 121"
 wall = float(sys.argv[4]) - float(sys.argv[3])
-cost = [float(m.group(1)) for m in re.finditer(r"eye sensor [0-9.]+ s = ([0-9.]+) % of the frame",
+demo = os.path.exists(os.path.join(work, "demo.log"))
+cost = [] if not demo else [float(m.group(1)) for m in re.finditer(r"eye sensor [0-9.]+ s = ([0-9.]+) % of the frame",
                                                 open(os.path.join(work, "demo.log")).read())]
-rows = [r for r in csv.DictReader(open(os.path.join(work, "demo", "adaptation.csv")))
-        if r["estimator"] == "eye"]
+rows = [] if not demo else [
+    r for r in csv.DictReader(open(os.path.join(work, "demo", "adaptation.csv")))
+    if r["estimator"] == "eye"]
 se = [math.hypot(float(r["std_err_u"]), float(r["std_err_v"])) for r in rows]
 n = [int(r["n_samples"]) for r in rows]
 q = lambda xs, p: sorted(xs)[min(len(xs) - 1, int(p * len(xs)))]
-print(f"Demo job, frames {frames}: {len(rows)} frames in {wall:.1f} s wall "
+if demo:
+  print(f"Demo job, frames {frames}: {len(rows)} frames in {wall:.1f} s wall "
       f"({3600 * len(rows) / wall:.0f} frames/hour, rendering, estimators and report)")
-print(f"  eye sensor share of frame time: mean {statistics.mean(cost):.2f} %, median "
+  print(f"  eye sensor share of frame time: mean {statistics.mean(cost):.2f} %, median "
       f"{statistics.median(cost):.2f} %, 90th percentile {q(cost, 0.9):.2f} %, max {max(cost):.2f} %")
-print(f"  paths per frame: mean {statistics.mean(n):.0f}, min {min(n)}, max {max(n)}; "
+  print(f"  paths per frame: mean {statistics.mean(n):.0f}, min {min(n)}, max {max(n)}; "
       f"frames at the 16384 cap: {sum(x >= 16384 for x in n)}")
-print(f"  standard error of u'v' (length of (se_u, se_v)): median {statistics.median(se):.2e}, "
+  print(f"  standard error of u'v' (length of (se_u, se_v)): median {statistics.median(se):.2e}, "
       f"90th percentile {q(se, 0.9):.2e}, max {max(se):.2e}; frames <= 2e-4: "
       f"{sum(x <= 2e-4 for x in se)} of {len(se)}")
 print("Static camera, 25 frames per room (eye only):")
-print(f"  {'room':<7} {'CRN':<5} {'paths':>7} {'reported se':>12} {'frame-to-frame sigma(u′v′)':>27}")
-for room in ("white", "orange", "blue"):
+print(f"  {'room':<9} {'CRN':<5} {'paths':>7} {'reported se':>12} {'frame-to-frame sigma(u′v′)':>27}")
+for room in ("white", "orange", "blue", "doorway1", "doorway2"):
     for crn in ("false", "true"):
         rs = [r for r in csv.DictReader(open(os.path.join(work, f"static-{room}-{crn}", "adaptation.csv")))
               if r["estimator"] == "eye"]
@@ -91,9 +100,9 @@ for room in ("white", "orange", "blue"):
         sigma = math.sqrt(statistics.variance(u) + statistics.variance(v))
         rep = statistics.mean(math.hypot(float(r["std_err_u"]), float(r["std_err_v"])) for r in rs)
         paths = statistics.mean(int(r["n_samples"]) for r in rs)
-        print(f"  {room:<7} {crn:<5} {paths:>7.0f} {rep:>12.2e} {sigma:>27.2e}")
+        print(f"  {room:<9} {crn:<5} {paths:>7.0f} {rep:>12.2e} {sigma:>27.2e}")
 PY
 if [ -n "$MD" ]; then
     append_markdown "$MD" "Eye sensor cost and noise" \
-        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}" "$OUT"
+        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}$([ "$DEMO" = 1 ] || echo ' --static-only')" "$OUT"
 fi

@@ -47,7 +47,8 @@ pub const ALL_ESTIMATORS: &[&str] = &[
 /// The eye sensor's budget: by default a fixed 6144 paths per frame. Measured in the demo's
 /// three rooms with a static camera and independent noise per frame (`scripts/bench/
 /// eye-sensor.sh`), 6144 paths give a frame-to-frame σ(u′v′) of 0.9–1.8e-4 at about 0.7 % of
-/// a demo frame's time (16 384 paths cost 1.8–3 %).
+/// a demo frame's time (16 384 paths cost 1.8–3 %); looking through a doorway into the next,
+/// differently coloured room it is 3.2–3.6e-4 (1.9–3.1e-4 with 16 384).
 ///
 /// Optionally adaptive: with `target_std_err_uv > 0` the reading checks its standard error of
 /// u′v′ (the length of (σu′, σv′), delta method) after `min_samples` paths and after every
