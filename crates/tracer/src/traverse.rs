@@ -6,8 +6,11 @@
 //! unpack + `cvtdq2ps`), and the near/far planes are chosen with min/max instead of branches.
 //! The arithmetic is otherwise the same operation for operation (multiply then add, the same
 //! min/max order, the same epsilon), so the hit masks are bit-identical to obvhs's
-//! `CwBvhNode::intersect_ray` — `tests` checks this on random rays and real nodes. The
-//! traversal loop itself is obvhs's `traverse!` macro.
+//! `CwBvhNode::intersect_ray` — `tests` checks this on random rays and real nodes — with one
+//! deliberate exception: a direction component of −0.0 (obvhs's `d < 0.0` test calls it
+//! positive while its 1/d is negative, so obvhs takes the far plane as the near one and misses
+//! the node; min/max takes the right one). The traversal loop itself is obvhs's `traverse!`
+//! macro.
 use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
