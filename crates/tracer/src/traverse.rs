@@ -143,6 +143,7 @@ mod tests {
     use crate::sampler::mix64;
     use obvhs::BvhBuildParams;
     use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+    use obvhs::rt_triangle::RtTriangle;
     use obvhs::triangle::Triangle;
     use std::time::Duration;
 
@@ -212,6 +213,41 @@ mod tests {
         }
         assert_eq!(differ, 0);
         assert!(hits > 10_000, "the rays must actually enter nodes ({hits})");
+    }
+
+    #[test]
+    fn a_negative_zero_direction_component_still_hits() {
+        // A wall of triangles at z = 5 in front of a ray whose x component is −0.0.
+        let mut tris = Vec::new();
+        for i in 0..64 {
+            let x = i as f32 * 0.25 - 8.0;
+            tris.push(Triangle {
+                v0: Vec3A::new(x, -1.0, 5.0 + 0.01 * i as f32),
+                v1: Vec3A::new(x + 0.25, -1.0, 5.0 + 0.01 * i as f32),
+                v2: Vec3A::new(x, 1.0, 5.0 + 0.01 * i as f32),
+            });
+        }
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        let rt: Vec<RtTriangle> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| RtTriangle::from(&tris[i as usize]))
+            .collect();
+        for dx in [0.0f32, -0.0] {
+            let ray = Ray::new(
+                Vec3A::new(0.1, -0.5, 0.0),
+                Vec3A::new(dx, 0.0, 1.0),
+                0.0,
+                100.0,
+            );
+            let hit = closest_hit(&bvh, &rt, ray, |t, r| t.intersect(r));
+            let t = hit.map(|h| h.t).unwrap_or(f32::INFINITY);
+            assert!((t - 5.32).abs() < 1e-4, "dx = {dx:?}: t = {t}");
+        }
     }
 
     fn obvhs_octant(bvh: &CwBvh, ray: &Ray) -> u32 {
