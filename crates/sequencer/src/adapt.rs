@@ -46,16 +46,16 @@ pub const ALL_ESTIMATORS: &[&str] = &[
 
 /// The eye sensor's budget: by default a fixed 6144 paths per frame. Measured in the demo's
 /// three rooms with a static camera and independent noise per frame (`scripts/bench/
-/// eye-sensor.sh`), 6144 paths give a frame-to-frame σ(u′v′) of 0.9–1.8e-4 at about 0.7 % of
-/// a demo frame's time (16 384 paths cost 1.8–3 %); looking through a doorway into the next,
-/// differently coloured room it is 3.2–3.6e-4 (1.9–3.1e-4 with 16 384).
+/// eye-sensor.sh`), 6144 paths give a frame-to-frame σ(u′v′) of 1.0–1.6e-4 at 0.72 % of a
+/// demo frame's time on average (16 384 paths: 0.7–1.15e-4 at 1.84 %); looking through a doorway
+/// into the next, differently coloured room it is 3.2–3.6e-4 (1.9–3.1e-4 with 16 384).
 ///
 /// Optionally adaptive: with `target_std_err_uv > 0` the reading checks its standard error of
 /// u′v′ (the length of (σu′, σv′), delta method) after `min_samples` paths and after every
 /// further round of 2048, stops once it is at most the target, and never goes past `samples`.
 /// That standard error is the i.i.d. formula, which ignores the stratification of the Sobol
-/// points: it overstates the actual error by 1.2–2.3× in the demo's rooms, so a target buys
-/// safety, not economy.
+/// points: it overstates the actual error by 1.2–2.3× in the demo's rooms and doorways (same
+/// script, both budgets), so a target buys safety, not economy.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct EyeOptions {

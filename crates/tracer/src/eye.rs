@@ -27,7 +27,7 @@ use std::f32::consts::PI;
 pub struct EyeSettings {
     /// Most sensor paths per frame (estimators.md §10: 16 384).
     pub samples: u32,
-    /// Paths traced before the caller's stopping rule is first asked (see [`eye_sensor`]);
+    /// Paths traced before the caller's stopping rule is first asked (see [`eye_sensor_until`]);
     /// `min_samples >= samples` gives a fixed budget.
     pub min_samples: u32,
     /// Common random numbers across frames (default true).
@@ -185,7 +185,8 @@ pub fn eye_sensor_until(
     // The first round reaches `min_samples`, later ones add EYE_ROUND paths each.
     let mut end = settings
         .min_samples
-        .clamp(1, settings.samples)
+        .max(1)
+        .min(settings.samples)
         .div_ceil(CHUNK);
     loop {
         let partials: Vec<Partial> = (next..end).into_par_iter().map(chunk_partial).collect();

@@ -86,3 +86,20 @@ fn an_error_target_stops_at_the_same_path_on_any_thread_count() {
     );
     assert!(rule(&runs[0]));
 }
+
+#[test]
+fn a_zero_budget_reads_nothing_instead_of_panicking() {
+    let (data, view) = cornell();
+    let e = eye_sensor(
+        &data,
+        &view,
+        &EyeSettings {
+            samples: 0,
+            ..EyeSettings::default()
+        },
+        0,
+        PATH,
+    );
+    assert_eq!(e.samples, 0);
+    assert_eq!(e.mean_rgb, glam::DVec3::ZERO);
+}
