@@ -12,6 +12,8 @@
 //! | `xml/` | `NAME.xml` | `eyeadapt render CASE` (Mitsuba 3 XML) into the good render |
 //! | `report/` | `NAME.csv` / `NAME.manifest` | `eyeadapt report` of a good sequence with that CSV / manifest patch |
 //! | `fuzz-regressions/` | inputs the fuzzers once crashed on | see `fuzz_regressions` below |
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -59,21 +61,13 @@ fn must(cmd: &mut Command) {
 
 /// Every file of a directory with its bytes and modification time.
 fn snapshot(dir: &Path) -> BTreeMap<String, (Vec<u8>, std::time::SystemTime)> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-                continue;
-            }
-            let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            let meta = std::fs::metadata(&p).unwrap();
-            out.insert(rel, (std::fs::read(&p).unwrap(), meta.modified().unwrap()));
-        }
-    }
-    out
+    common::walk(dir)
+        .into_iter()
+        .map(|(rel, p)| {
+            let modified = std::fs::metadata(&p).unwrap().modified().unwrap();
+            (rel, (std::fs::read(&p).unwrap(), modified))
+        })
+        .collect()
 }
 
 /// A case's `.expected` file: `at: FILE:LINE` (or `FILE`, or `none` where the input is not a

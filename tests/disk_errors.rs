@@ -13,6 +13,8 @@
 //! The full-disk and read-only cases mount small tmpfs file systems and need root (root also
 //! ignores `chmod`, which is why read-only is a mount here); without root they print why they
 //! are skipped and pass.
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -62,25 +64,11 @@ fn ok(out: &Path, extra: &[&str]) {
 
 /// Every file except the lock, by relative path (raw bytes).
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        for e in entries {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-                continue;
-            }
-            let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            if rel != ".eyeadapt.lock" {
-                out.insert(rel, std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    out
+    common::walk(dir)
+        .into_iter()
+        .filter(|(rel, _)| rel != ".eyeadapt.lock")
+        .map(|(rel, p)| (rel, std::fs::read(&p).unwrap()))
+        .collect()
 }
 
 /// Frames committed in `dir`'s manifest, with their files.

@@ -1,5 +1,8 @@
 //! `eyeadapt sequence` end to end: determinism across chunking and threads, resume after
 //! SIGKILL at random moments, refusal to mix jobs.
+mod common;
+
+use common::snapshot;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -38,39 +41,6 @@ fn sequence(out: &Path, extra: &[&str]) -> std::process::Output {
         String::from_utf8_lossy(&o.stderr)
     );
     o
-}
-
-/// Every file under `dir` except the lock, by relative path; EXRs compared by decoded pixels.
-fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-                continue;
-            }
-            let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            if rel == ".eyeadapt.lock" {
-                continue;
-            }
-            assert!(!rel.contains(".tmp-"), "temporary file left behind: {rel}");
-            let bytes = if rel.ends_with(".exr") {
-                let f = eyeadapt_sequencer::output::read_exr(&p).unwrap();
-                f.rgb
-                    .iter()
-                    .flatten()
-                    .chain(f.albedo.iter().flatten())
-                    .flat_map(|v| v.to_le_bytes())
-                    .collect()
-            } else {
-                std::fs::read(&p).unwrap()
-            };
-            out.insert(rel, bytes);
-        }
-    }
-    out
 }
 
 fn assert_same(a: &BTreeMap<String, Vec<u8>>, b: &BTreeMap<String, Vec<u8>>, what: &str) {

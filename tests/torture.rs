@@ -13,6 +13,9 @@
 //! printed, with the tally, by `cargo test --release --test torture -- --nocapture`.
 //!
 //! Reproduce one trial: `EYEADAPT_TORTURE_SEED=<seed> EYEADAPT_TORTURE_TRIALS=1`.
+mod common;
+
+use common::snapshot;
 use std::collections::BTreeMap;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -72,41 +75,6 @@ impl Rng {
     fn unit(&mut self) -> f64 {
         (self.next() >> 40) as f64 / (1u64 << 24) as f64
     }
-}
-
-/// Every file except the lock, by relative path. EXRs as the bits of every decoded channel.
-fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-                continue;
-            }
-            let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            if rel == ".eyeadapt.lock" {
-                continue;
-            }
-            assert!(!rel.contains(".tmp-"), "temporary file left behind: {rel}");
-            let bytes = if rel.ends_with(".exr") {
-                let f = eyeadapt_sequencer::output::read_exr(&p).unwrap();
-                let mut b = format!("{}x{}", f.width, f.height).into_bytes();
-                for v3 in [&f.rgb, &f.albedo, &f.achromatic, &f.irradiance, &f.normal] {
-                    b.extend(v3.iter().flatten().flat_map(|v| v.to_bits().to_le_bytes()));
-                }
-                for v in [&f.depth, &f.emitter, &f.hit] {
-                    b.extend(v.iter().flat_map(|v| v.to_bits().to_le_bytes()));
-                }
-                b
-            } else {
-                std::fs::read(&p).unwrap()
-            };
-            out.insert(rel, bytes);
-        }
-    }
-    out
 }
 
 /// What the killed run was doing, judged from what it left behind.
