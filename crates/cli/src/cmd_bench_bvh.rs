@@ -182,14 +182,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let rss_start = peak_rss();
     let mesh = terrain(n);
     // For timing obvhs alone; made before the baseline so it does not count as the build's.
-    let obvhs_tris: Vec<Triangle> = mesh
-        .iter()
-        .map(|t| Triangle {
-            v0: t.v[0],
-            v1: t.v[1],
-            v2: t.v[2],
-        })
-        .collect();
+    let obvhs_tris: Vec<Triangle> = mesh.iter().map(InputTri::triangle).collect();
     let rss_mesh = peak_rss();
     let params = match a.bvh_preset.as_deref() {
         Some(name) => PRESETS

@@ -74,6 +74,17 @@ pub fn build_params(n: usize) -> BvhBuildParams {
     }
 }
 
+impl InputTri {
+    /// The positions as obvhs's build input.
+    pub fn triangle(&self) -> Triangle {
+        Triangle {
+            v0: self.v[0],
+            v1: self.v[1],
+            v2: self.v[2],
+        }
+    }
+}
+
 impl Accel {
     /// Builds with the preset [`build_params`] picks for the size.
     pub fn build(input: &[InputTri]) -> Accel {
@@ -92,14 +103,7 @@ impl Accel {
                 degenerate += 1;
             }
         }
-        let tris: Vec<Triangle> = kept
-            .iter()
-            .map(|t| Triangle {
-                v0: t.v[0],
-                v1: t.v[1],
-                v2: t.v[2],
-            })
-            .collect();
+        let tris: Vec<Triangle> = kept.iter().map(|t| t.triangle()).collect();
         let (mut lo, mut hi) = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
         for t in &tris {
             for v in [t.v0, t.v1, t.v2] {
