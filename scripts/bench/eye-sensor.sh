@@ -7,7 +7,7 @@
 #    and reads the sensor's share of each frame's time from the log ("eye sensor … % of the
 #    frame"), with the paths it used and its standard error of u′v′ from adaptation.csv.
 # 2. Noise floor: a static camera in each of the demo's three rooms and in its two doorways
-#    (looking from one room into the next), 25 frames each, eye estimator only, once with
+#    (looking from one room into the next), 49 frames each, eye estimator only, once with
 #    common random numbers off (frame-to-frame σ(u′v′) is then the Monte-Carlo noise) and once
 #    on (the default: the reading repeats exactly).
 set -euo pipefail
@@ -59,7 +59,7 @@ common_random_numbers = $crn
 [camera_path]
 fps = 24
 keyframes = [ { time = 0.0, position = [$pos], look_at = [$look] },
-              { time = 1.0, position = [$pos], look_at = [$look] } ]
+              { time = 2.0, position = [$pos], look_at = [$look] } ]
 TOML
         "$BIN" sequence "$WORK/static-$name-$crn.toml" --out "$WORK/static-$name-$crn" \
             --log-format plain >/dev/null 2>&1
@@ -89,7 +89,8 @@ if demo:
   print(f"  standard error of u'v' (length of (se_u, se_v)): median {statistics.median(se):.2e}, "
       f"90th percentile {q(se, 0.9):.2e}, max {max(se):.2e}; frames <= 2e-4: "
       f"{sum(x <= 2e-4 for x in se)} of {len(se)}")
-print("Static camera, 25 frames per room (eye only):")
+n_static = sum(r["estimator"] == "eye" for r in csv.DictReader(open(os.path.join(work, "static-white-false", "adaptation.csv"))))
+print(f"Static camera, {n_static} frames per room (eye only):")
 print(f"  {'room':<9} {'CRN':<5} {'paths':>7} {'reported se':>12} {'frame-to-frame sigma(u′v′)':>27}")
 for room in ("white", "orange", "blue", "doorway1", "doorway2"):
     for crn in ("false", "true"):

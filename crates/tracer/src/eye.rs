@@ -125,12 +125,14 @@ pub fn eye_sensor_until(
         let mut s = SampleStream::new(key, i);
         let u_pick = s.next_1d();
         let _ = s.next_1d();
-        let _ = s.next_2d();
         let u_light = s.next_2d();
+        // Dimensions 0-1 of the next chunk; `trace` draws the first hit's light sample from
+        // dimensions 2-3, so that direct light there is stratified jointly with the direction.
+        s.start_group();
         let u_dir = s.next_2d();
         let mut x = Vec3A::ZERO;
         // Light sampling from the eye (includes the direct term of point and spot lights).
-        if let Some(ls) = scene.lights.sample(eye, u_pick, u_light) {
+        if let Some(ls) = scene.lights.sample(eye, None, u_pick, u_light) {
             let cos = ls.wi.dot(axis);
             let k = (1.0 + cos) * 0.25;
             if k > 0.0

@@ -137,8 +137,8 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
         let mut acc = PixelAcc::default();
         for i in 0..settings.spp {
             let mut s = SampleStream::new(key, i);
+            // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
             let j = s.next_2d();
-            let _ = s.next_2d();
             let d = view.ray_dir(basis, x as f32 + j[0], y as f32 + j[1]);
             let p = trace(
                 scene,

@@ -142,7 +142,15 @@ pub fn trace(
     let mut ke = Vec3A::ZERO;
     let mut prev = from;
     let mut prev_p = o;
+    // Normal of the vertex `prev_p` is on (none at the start: a camera or the eye).
+    let mut prev_n: Option<Vec3A> = None;
     let mut depth: u32 = 0;
+    // The first vertex's light sample comes from the dimensions right after the caller's
+    // direction (the pixel position, the eye's cardioid direction), in the same 4-D Sobol chunk:
+    // direct light at the first hit is then one jointly stratified 4-D integral over
+    // (direction, light point) instead of two 2-D ones paired at random. Every later vertex
+    // likewise draws its light sample together with the direction that leads to it.
+    let mut u_light = s.next_2d();
     let max_depth = if settings.max_depth < 0 {
         u32::MAX
     } else {
@@ -154,7 +162,7 @@ pub fn trace(
             if let Some(env) = lights.env {
                 let w = match prev {
                     Origin::Camera => 1.0,
-                    Origin::Sampled { pdf } => power_heuristic(pdf, lights.pdf_env()),
+                    Origin::Sampled { pdf } => power_heuristic(pdf, lights.pdf_env(prev_p, prev_n)),
                 };
                 let c = beta * env * w;
                 out.l += c;
@@ -178,7 +186,7 @@ pub fn trace(
             let w = match prev {
                 Origin::Camera => 1.0,
                 Origin::Sampled { pdf } => {
-                    power_heuristic(pdf, lights.pdf_area(hit.info.light, prev_p, hit.p))
+                    power_heuristic(pdf, lights.pdf_area(hit.info.light, prev_p, prev_n, hit.p))
                 }
             };
             let c = beta * emission * w;
@@ -207,13 +215,13 @@ pub fn trace(
         let u_lobe = s.next_1d();
         let u_rr = s.next_1d();
         let _ = s.next_1d();
-        let u_light = s.next_2d();
         let u_bsdf = s.next_2d();
+        let u_light_next = s.next_2d();
         let p = offset(hit.p, ng);
 
         // Next-event estimation.
         if !bsdf.is_delta()
-            && let Some(ls) = lights.sample(p, u_pick, u_light)
+            && let Some(ls) = lights.sample(p, Some(ng), u_pick, u_light)
             && ls.wi.dot(ng) > 0.0
         {
             let wi_l = frame.to_local(ls.wi);
@@ -255,12 +263,16 @@ pub fn trace(
             }
         }
         beta *= bs.weight;
+        u_light = u_light_next;
         prev = if bs.delta {
             Origin::Camera
         } else {
             Origin::Sampled { pdf: bs.pdf }
         };
-        prev_p = p; // the actual ray origin, so MIS here matches the NEE pdf computed from `p`
+        // The actual ray origin and the normal NEE used, so MIS at the next emitter hit sees
+        // the same light-choice probability as NEE computed here.
+        prev_p = p;
+        prev_n = Some(ng);
         o = p;
         d = wi;
         depth += 1;

@@ -12,6 +12,7 @@ mod bsdf;
 mod eye;
 mod film;
 mod integrator;
+mod light_pick;
 mod lights;
 mod microfacet;
 mod sampler;

@@ -1,6 +1,7 @@
 //! Every light source, for next-event estimation: emissive triangles, point and spot lights
-//! and the constant environment, chosen in proportion to their power.
+//! and the constant environment; [`crate::light_pick`] chooses which one a shading point samples.
 use crate::accel::InputTri;
+use crate::light_pick::{LightPicker, Unit};
 use eyeadapt_scene::Light;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -103,9 +104,10 @@ pub struct LightSet {
     quads: Vec<Parallelogram>,
     pub deltas: Vec<DeltaLight>,
     pub env: Option<Vec3A>,
-    /// Cumulative selection weights over [area..., deltas..., env].
-    cdf: Vec<f64>,
-    total: f64,
+    /// Chooses among quads, lone triangles, deltas and the environment.
+    picker: LightPicker,
+    /// For each area triangle, its unit in `picker`.
+    unit_of: Vec<u32>,
 }
 
 impl LightSet {
@@ -163,32 +165,26 @@ impl LightSet {
             .collect();
         let (quad_of, quads) = pair_parallelograms(&area);
         let env = env.filter(|e| e.max_element() > 0.0);
-        let mut weights: Vec<f64> = area
-            .iter()
-            .map(|a| (PI * a.area * luminance(a.emission)) as f64)
-            .collect();
-        for d in &deltas {
-            weights.push(match *d {
-                DeltaLight::Point { intensity, .. } => 4.0 * PI * luminance(intensity),
-                DeltaLight::Spot {
-                    intensity,
-                    cos_cone,
-                    cos_falloff,
-                    ..
-                } => 2.0 * PI * (1.0 - 0.5 * (cos_cone + cos_falloff)) * luminance(intensity),
-            } as f64);
-        }
-        if let Some(e) = env {
-            let r = scene_radius.max(1e-3);
-            weights.push((PI * luminance(e) * PI * r * r) as f64);
-        }
-        let mut cdf = Vec::with_capacity(weights.len());
-        let mut total = 0.0;
-        for w in weights {
-            // A light whose luminance is zero but which still has colour (pure blue) must
-            // remain reachable: give it a floor.
-            total += w.max(1e-12);
-            cdf.push(total);
+        LightSet::assemble(area, quad_of, quads, deltas, env, scene_radius)
+    }
+
+    fn assemble(
+        area: Vec<AreaTri>,
+        quad_of: Vec<u32>,
+        quads: Vec<Parallelogram>,
+        deltas: Vec<DeltaLight>,
+        env: Option<Vec3A>,
+        scene_radius: f32,
+    ) -> LightSet {
+        let picker = LightPicker::build(&area, &quad_of, &quads, &deltas, env, scene_radius);
+        let mut unit_of = vec![u32::MAX; area.len()];
+        for (k, u) in picker.units.iter().enumerate() {
+            if let Unit::Area { first, quad } = *u {
+                unit_of[first as usize] = k as u32;
+                if quad != u32::MAX {
+                    unit_of[first as usize + 1] = k as u32;
+                }
+            }
         }
         LightSet {
             area,
@@ -196,27 +192,33 @@ impl LightSet {
             quads,
             deltas,
             env,
-            cdf,
-            total,
+            picker,
+            unit_of,
         }
     }
 
     pub fn is_empty(&self) -> bool {
-        self.cdf.is_empty()
+        self.picker.units.is_empty()
     }
 
-    fn prob(&self, i: usize) -> f32 {
-        let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-        ((self.cdf[i] - lo) / self.total) as f32
+    /// Whether the choice of light depends on the shading point (see [`crate::light_pick`]).
+    pub fn spatial_choice(&self) -> bool {
+        self.picker.is_spatial()
     }
 
-    /// Selection probability of area triangle `i`.
-    pub fn area_prob(&self, i: u32) -> f32 {
-        self.prob(i as usize)
+    /// Area of area-light unit `first` (both halves of a parallelogram).
+    #[inline]
+    fn unit_area(&self, first: usize) -> f32 {
+        if self.quad_of[first] == u32::MAX {
+            self.area[first].area
+        } else {
+            self.area[first].area + self.area[first + 1].area
+        }
     }
 
-    /// Solid-angle density of hitting area light `i` at `y` (normal `n`) from `x`.
-    pub fn pdf_area(&self, i: u32, x: Vec3A, y: Vec3A) -> f32 {
+    /// Solid-angle density with which [`LightSet::sample`] at `x` (normal `n`, as given to
+    /// `sample`) reaches point `y` of area triangle `i`.
+    pub fn pdf_area(&self, i: u32, x: Vec3A, n: Option<Vec3A>, y: Vec3A) -> f32 {
         let a = &self.area[i as usize];
         let d = y - x;
         let d2 = d.length_squared();
@@ -224,90 +226,95 @@ impl LightSet {
         if cos_l <= 0.0 {
             return 0.0;
         }
-        self.prob(i as usize) / a.area * d2 / cos_l
+        let unit = self.unit_of[i as usize] as usize;
+        let first = match self.picker.units[unit] {
+            Unit::Area { first, .. } => first as usize,
+            _ => unreachable!("area triangles map to area units"),
+        };
+        self.picker.prob(unit, x, n) / self.unit_area(first) * d2 / cos_l
     }
 
-    pub fn pdf_env(&self) -> f32 {
+    /// Solid-angle density with which [`LightSet::sample`] at `x` (normal `n`) picks a
+    /// direction to the environment.
+    pub fn pdf_env(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
         if self.env.is_some() {
-            self.prob(self.cdf.len() - 1) / (4.0 * PI)
+            self.picker.prob(self.picker.units.len() - 1, x, n) / (4.0 * PI)
         } else {
             0.0
         }
     }
 
-    /// Samples a light for the point `x`.
-    pub fn sample(&self, x: Vec3A, u_pick: f32, u: [f32; 2]) -> Option<LightSample> {
-        if self.cdf.is_empty() {
-            return None;
-        }
-        let target = u_pick as f64 * self.total;
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= target)
-            .min(self.cdf.len() - 1);
-        let p = self.prob(i);
-        let n_area = self.area.len();
-        if i < n_area {
-            let a = &self.area[i];
-            // Within a parallelogram pair both halves have the same density p_i / area_i
-            // (selection is proportional to area × luminance, and their emission is equal), so
-            // sampling the pair uniformly leaves every pdf below unchanged.
-            let y = match self.quad_of[i] {
-                u32::MAX => {
+    /// Samples a light for the point `x` with geometric normal `n` on the side the light must
+    /// be on (`None` for a point without a surface, such as the eye).
+    pub fn sample(
+        &self,
+        x: Vec3A,
+        n: Option<Vec3A>,
+        u_pick: f32,
+        u: [f32; 2],
+    ) -> Option<LightSample> {
+        let (k, p) = self.picker.pick(x, n, u_pick)?;
+        match self.picker.units[k] {
+            Unit::Area { first, quad } => {
+                let a = &self.area[first as usize];
+                // A parallelogram is sampled uniformly over both halves (same emission and
+                // normal), a lone triangle uniformly over itself.
+                let y = if quad == u32::MAX {
                     let su = u[0].sqrt();
                     a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1])
-                }
-                q => {
-                    let q = &self.quads[q as usize];
+                } else {
+                    let q = &self.quads[quad as usize];
                     q.o + q.e1 * u[0] + q.e2 * u[1]
+                };
+                let d = y - x;
+                let d2 = d.length_squared();
+                let dist = d2.sqrt();
+                if dist <= 0.0 {
+                    return None;
                 }
-            };
-            let d = y - x;
-            let d2 = d.length_squared();
-            let dist = d2.sqrt();
-            if dist <= 0.0 {
-                return None;
+                let wi = d / dist;
+                let cos_l = -a.n.dot(wi);
+                if cos_l <= 0.0 {
+                    return None; // back side of a one-sided emitter
+                }
+                Some(LightSample {
+                    wi,
+                    dist,
+                    li: a.emission,
+                    pdf: p / self.unit_area(first as usize) * d2 / cos_l,
+                    delta: false,
+                })
             }
-            let wi = d / dist;
-            let cos_l = -a.n.dot(wi);
-            if cos_l <= 0.0 {
-                return None; // back side of a one-sided emitter
+            Unit::Delta(j) => {
+                let l = &self.deltas[j as usize];
+                let d = l.position() - x;
+                let d2 = d.length_squared();
+                let dist = d2.sqrt();
+                if dist <= 0.0 {
+                    return None;
+                }
+                let wi = d / dist;
+                Some(LightSample {
+                    wi,
+                    dist,
+                    li: l.intensity(-wi) / d2,
+                    pdf: p,
+                    delta: true,
+                })
             }
-            Some(LightSample {
-                wi,
-                dist,
-                li: a.emission,
-                pdf: p / a.area * d2 / cos_l,
-                delta: false,
-            })
-        } else if i < n_area + self.deltas.len() {
-            let l = &self.deltas[i - n_area];
-            let d = l.position() - x;
-            let d2 = d.length_squared();
-            let dist = d2.sqrt();
-            if dist <= 0.0 {
-                return None;
+            Unit::Env => {
+                let env = self.env?;
+                let z = 1.0 - 2.0 * u[0];
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * PI * u[1];
+                Some(LightSample {
+                    wi: Vec3A::new(r * phi.cos(), r * phi.sin(), z),
+                    dist: f32::INFINITY,
+                    li: env,
+                    pdf: p / (4.0 * PI),
+                    delta: false,
+                })
             }
-            let wi = d / dist;
-            Some(LightSample {
-                wi,
-                dist,
-                li: l.intensity(-wi) / d2,
-                pdf: p,
-                delta: true,
-            })
-        } else {
-            let env = self.env?;
-            let z = 1.0 - 2.0 * u[0];
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = 2.0 * PI * u[1];
-            Some(LightSample {
-                wi: Vec3A::new(r * phi.cos(), r * phi.sin(), z),
-                dist: f32::INFINITY,
-                li: env,
-                pdf: p / (4.0 * PI),
-                delta: false,
-            })
         }
     }
 
@@ -327,20 +334,17 @@ impl LightSet {
                 None => out.push((a.emission, f)),
             }
         }
+        let first_delta = self.picker.units.len() - self.deltas.len() - self.env.is_some() as usize;
         for (k, d) in self.deltas.iter().enumerate() {
-            let i = self.area.len() + k;
-            let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
             let intensity = match *d {
                 DeltaLight::Point { intensity, .. } | DeltaLight::Spot { intensity, .. } => {
                     intensity
                 }
             };
-            out.push((intensity, self.cdf[i] - lo));
+            out.push((intensity, self.picker.power(first_delta + k)));
         }
         if let Some(e) = self.env {
-            let i = self.cdf.len() - 1;
-            let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-            out.push((e, self.cdf[i] - lo));
+            out.push((e, self.picker.power(self.picker.units.len() - 1)));
         }
         out
     }
@@ -430,7 +434,7 @@ mod tests {
             let u_pick = st.next_1d();
             let _ = st.next_1d();
             let u = st.next_2d();
-            if let Some(ls) = lights.sample(Vec3A::ZERO, u_pick, u) {
+            if let Some(ls) = lights.sample(Vec3A::ZERO, None, u_pick, u) {
                 sum += (ls.li.x * ls.wi.dot(normal).max(0.0) / ls.pdf) as f64;
             }
         }
@@ -467,8 +471,14 @@ mod tests {
         // halves must not add variance (it removes the noise of dealing samples to halves).
         let tris = square_light(1.0, 0.3, false);
         let paired = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
-        let mut halves = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
-        halves.quad_of.iter_mut().for_each(|q| *q = u32::MAX);
+        let halves = LightSet::assemble(
+            paired.area.clone(),
+            vec![u32::MAX; 2],
+            Vec::new(),
+            Vec::new(),
+            None,
+            10.0,
+        );
         let spread = |l: &LightSet| {
             let xs: Vec<f64> = (0..64u64)
                 .map(|k| {
@@ -479,7 +489,7 @@ mod tests {
                         let u_pick = st.next_1d();
                         let _ = st.next_1d();
                         let u = st.next_2d();
-                        if let Some(ls) = l.sample(Vec3A::ZERO, u_pick, u) {
+                        if let Some(ls) = l.sample(Vec3A::ZERO, None, u_pick, u) {
                             sum += (ls.li.x * ls.wi.y.max(0.0) / ls.pdf) as f64;
                         }
                     }

@@ -1,0 +1,399 @@
+//! Which light next-event estimation samples from a given shading point.
+//!
+//! The choosable *units* are: each quad light (two emissive triangles paired into a
+//! parallelogram), each remaining emissive triangle, each point or spot light, and the constant
+//! environment.
+//!
+//! With few units (2 ..= [`SPATIAL_MAX_UNITS`]) the choice depends on the receiving point: each
+//! unit is weighted by a conservative estimate of the irradiance it can deliver there — its
+//! power, a distance falloff clamped at its own size, and emitter and receiver cosines widened
+//! by the angle it subtends (the importance of Conty & Kulla's light tree, for one node). A unit
+//! gets weight 0 only where its contribution is exactly 0: the receiver behind the light's
+//! emitting plane, the whole light below the receiver's tangent plane, or outside a spot's cone.
+//! So the estimator stays unbiased, and in a house of rooms each room's own light gets most of
+//! the shadow rays instead of an equal share with lights behind the walls. Visibility is not
+//! known, so a light in the next room still gets what its distance earns.
+//!
+//! With one unit, or more than [`SPATIAL_MAX_UNITS`] (the cost per shading point grows with the
+//! count), units are chosen in proportion to their total power, the same everywhere.
+use crate::lights::{AreaTri, DeltaLight, Parallelogram, luminance};
+use glam::Vec3A;
+use std::f32::consts::PI;
+
+/// Most units for which the choice depends on the shading point.
+pub const SPATIAL_MAX_UNITS: usize = 16;
+
+/// What a unit is, as indices into the light set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Emissive triangles `first` (and `first + 1` when `quad` is not `u32::MAX`).
+    Area {
+        first: u32,
+        quad: u32,
+    },
+    Delta(u32),
+    Env,
+}
+
+/// What the spatial importance needs of a unit.
+#[derive(Clone, Copy, Debug)]
+enum Bounds {
+    Area {
+        centre: Vec3A,
+        /// Bounding-sphere radius around `centre`.
+        radius: f32,
+        /// Emitting side.
+        normal: Vec3A,
+        /// The vertices (a triangle repeats its last one).
+        corners: [Vec3A; 4],
+        /// Area × luminance of the emitted radiance.
+        power: f32,
+    },
+    Delta(DeltaLight),
+    Env {
+        luminance: f32,
+    },
+}
+
+pub struct LightPicker {
+    pub units: Vec<Unit>,
+    bounds: Vec<Bounds>,
+    /// Cumulative power weights over `units`.
+    cdf: Vec<f64>,
+    total: f64,
+    spatial: bool,
+}
+
+/// Luminance used for weights, floored so that a coloured light whose luminance rounds to
+/// nothing stays reachable.
+fn weight_luminance(c: Vec3A) -> f32 {
+    luminance(c).max(1e-6 * c.max_element()).max(0.0)
+}
+
+/// cos(max(0, θ − β)) for cos θ = `cos_t` and a half-angle β given by its sine and cosine: the
+/// largest cosine any direction within β of the axis can have.
+#[inline]
+fn widened_cos(cos_t: f32, sin_b: f32, cos_b: f32) -> f32 {
+    if cos_t >= cos_b {
+        1.0
+    } else {
+        let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+        cos_t * cos_b + sin_t * sin_b
+    }
+}
+
+impl LightPicker {
+    pub fn build(
+        area: &[AreaTri],
+        quad_of: &[u32],
+        quads: &[Parallelogram],
+        deltas: &[DeltaLight],
+        env: Option<Vec3A>,
+        scene_radius: f32,
+    ) -> LightPicker {
+        let mut units = Vec::new();
+        let mut bounds = Vec::new();
+        let mut weights: Vec<f64> = Vec::new();
+        let mut i = 0;
+        while i < area.len() {
+            let a = &area[i];
+            let q = quad_of[i];
+            let (corners, total_area) = if q == u32::MAX {
+                let v = [a.v0, a.v0 + a.e1, a.v0 + a.e2];
+                ([v[0], v[1], v[2], v[2]], a.area)
+            } else {
+                let p = &quads[q as usize];
+                (
+                    [p.o, p.o + p.e1, p.o + p.e1 + p.e2, p.o + p.e2],
+                    a.area + area[i + 1].area,
+                )
+            };
+            let centre = if q == u32::MAX {
+                (corners[0] + corners[1] + corners[2]) / 3.0
+            } else {
+                (corners[0] + corners[2]) * 0.5
+            };
+            let radius = corners
+                .iter()
+                .map(|c| (*c - centre).length())
+                .fold(0.0f32, f32::max);
+            let power = total_area * weight_luminance(a.emission);
+            units.push(Unit::Area {
+                first: i as u32,
+                quad: q,
+            });
+            bounds.push(Bounds::Area {
+                centre,
+                radius,
+                normal: a.n,
+                corners,
+                power,
+            });
+            weights.push((PI * power) as f64);
+            i += if q == u32::MAX { 1 } else { 2 };
+        }
+        for (k, d) in deltas.iter().enumerate() {
+            units.push(Unit::Delta(k as u32));
+            bounds.push(Bounds::Delta(*d));
+            weights.push(match *d {
+                DeltaLight::Point { intensity, .. } => 4.0 * PI * weight_luminance(intensity),
+                DeltaLight::Spot {
+                    intensity,
+                    cos_cone,
+                    cos_falloff,
+                    ..
+                } => {
+                    2.0 * PI * (1.0 - 0.5 * (cos_cone + cos_falloff)) * weight_luminance(intensity)
+                }
+            } as f64);
+        }
+        if let Some(e) = env {
+            let r = scene_radius.max(1e-3);
+            units.push(Unit::Env);
+            bounds.push(Bounds::Env {
+                luminance: weight_luminance(e),
+            });
+            weights.push((PI * weight_luminance(e) * PI * r * r) as f64);
+        }
+        let mut cdf = Vec::with_capacity(weights.len());
+        let mut total = 0.0;
+        for w in weights {
+            total += w.max(1e-12);
+            cdf.push(total);
+        }
+        let spatial = (2..=SPATIAL_MAX_UNITS).contains(&units.len());
+        LightPicker {
+            units,
+            bounds,
+            cdf,
+            total,
+            spatial,
+        }
+    }
+
+    /// Whether the choice depends on the shading point.
+    pub fn is_spatial(&self) -> bool {
+        self.spatial
+    }
+
+    /// Unit `k`'s power weight (flux in luminance units, floored at 1e-12).
+    pub fn power(&self, k: usize) -> f64 {
+        let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
+        self.cdf[k] - lo
+    }
+
+    /// Probability of choosing unit `k` regardless of the shading point (its share of power).
+    pub fn power_prob(&self, k: usize) -> f64 {
+        self.power(k) / self.total
+    }
+
+    /// Chooses a unit for a shading point `x` with (geometric, viewer-side) normal `n`, or
+    /// `None` for a point that only looks from, like the eye. Returns the unit's index and the
+    /// probability of that choice; `None` when no unit can contribute at `x`.
+    #[inline]
+    pub fn pick(&self, x: Vec3A, n: Option<Vec3A>, u: f32) -> Option<(usize, f32)> {
+        if self.cdf.is_empty() {
+            return None;
+        }
+        if !self.spatial {
+            let target = u as f64 * self.total;
+            let k = self
+                .cdf
+                .partition_point(|&c| c <= target)
+                .min(self.cdf.len() - 1);
+            return Some((k, self.power_prob(k) as f32));
+        }
+        let mut w = [0.0f32; SPATIAL_MAX_UNITS];
+        let total = self.importances(x, n, &mut w);
+        if total <= 0.0 {
+            return None;
+        }
+        let target = u * total;
+        let mut acc = 0.0;
+        let mut last = 0;
+        for (k, &wk) in w[..self.units.len()].iter().enumerate() {
+            if wk > 0.0 {
+                acc += wk;
+                last = k;
+                if target < acc {
+                    return Some((k, wk / total));
+                }
+            }
+        }
+        // Rounding left `target` at or above the running sum: the last unit that can contribute.
+        Some((last, w[last] / total))
+    }
+
+    /// Probability that [`LightPicker::pick`] at (`x`, `n`) chooses unit `k`.
+    #[inline]
+    pub fn prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        if !self.spatial {
+            return self.power_prob(k) as f32;
+        }
+        let mut w = [0.0f32; SPATIAL_MAX_UNITS];
+        let total = self.importances(x, n, &mut w);
+        if total <= 0.0 { 0.0 } else { w[k] / total }
+    }
+
+    /// Every unit's importance at (`x`, `n`) into `w`; returns their sum.
+    fn importances(&self, x: Vec3A, n: Option<Vec3A>, w: &mut [f32; SPATIAL_MAX_UNITS]) -> f32 {
+        let mut total = 0.0;
+        for (wk, b) in w.iter_mut().zip(&self.bounds) {
+            *wk = importance(b, x, n);
+            total += *wk;
+        }
+        total
+    }
+}
+
+/// Estimated irradiance a unit delivers at `x` (normal `n`; scalar irradiance without one);
+/// exactly 0 only where it delivers none.
+#[inline]
+fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
+    match *b {
+        Bounds::Area {
+            centre,
+            radius,
+            normal,
+            corners,
+            power,
+        } => {
+            // Behind (or in) the one-sided emitter's plane: every point of it faces away.
+            let front = (x - centre).dot(normal);
+            if front <= 0.0 {
+                return 0.0;
+            }
+            // Entirely below the receiver's tangent plane (linear in the light point, so the
+            // corners decide for the whole polygon).
+            if let Some(n) = n
+                && corners.iter().all(|c| (*c - x).dot(n) <= 0.0)
+            {
+                return 0.0;
+            }
+            let to = centre - x;
+            let d2 = to.length_squared();
+            let d = d2.sqrt();
+            let sin_b = (radius / d).min(1.0);
+            let cos_b = (1.0 - sin_b * sin_b).max(0.0).sqrt();
+            let cos_e = widened_cos(front / d, sin_b, cos_b);
+            let cos_r = match n {
+                Some(n) => widened_cos(n.dot(to) / d, sin_b, cos_b),
+                None => 1.0,
+            };
+            // Floors keep a unit that can contribute (the exact tests above) choosable when
+            // rounding takes a widened cosine to 0.
+            power * cos_e.max(1e-3) * cos_r.max(1e-3) / d2.max(radius * radius).max(1e-12)
+        }
+        Bounds::Delta(l) => {
+            let to = l.position() - x;
+            let d2 = to.length_squared();
+            if d2 <= 0.0 {
+                return 0.0;
+            }
+            let wi = to / d2.sqrt();
+            let cos_r = match n {
+                Some(n) => wi.dot(n),
+                None => 1.0,
+            };
+            if cos_r <= 0.0 {
+                return 0.0;
+            }
+            weight_luminance(l.intensity(-wi)) * cos_r / d2
+        }
+        Bounds::Env { luminance } => match n {
+            Some(_) => PI * luminance,
+            None => 4.0 * PI * luminance,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad_light(y: f32, z: f32, emission: Vec3A) -> (Vec<AreaTri>, Parallelogram) {
+        // 1 m × 1 m at height y, centred on (0, y, z), facing down.
+        let o = Vec3A::new(-0.5, y, z - 0.5);
+        let e1 = Vec3A::new(1.0, 0.0, 0.0);
+        let e2 = Vec3A::new(0.0, 0.0, 1.0);
+        let n = e1.cross(e2).normalize(); // −y
+        let tri = |v0: Vec3A, a: Vec3A, b: Vec3A| AreaTri {
+            v0,
+            e1: a - v0,
+            e2: b - v0,
+            n,
+            area: 0.5,
+            emission,
+        };
+        (
+            vec![tri(o, o + e1, o + e2), tri(o + e1 + e2, o + e2, o + e1)],
+            Parallelogram { o, e1, e2 },
+        )
+    }
+
+    fn two_rooms() -> LightPicker {
+        let (mut area, q0) = quad_light(3.0, 0.0, Vec3A::ONE);
+        let (b, q1) = quad_light(3.0, -6.0, Vec3A::ONE);
+        area.extend(b);
+        LightPicker::build(&area, &[0, 0, 1, 1], &[q0, q1], &[], None, 10.0)
+    }
+
+    #[test]
+    fn the_near_light_gets_most_of_the_choices_and_probabilities_sum_to_one() {
+        let p = two_rooms();
+        assert!(p.is_spatial());
+        assert_eq!(p.units.len(), 2);
+        let x = Vec3A::new(0.3, 0.0, -0.5);
+        let n = Some(Vec3A::Y);
+        let (p0, p1) = (p.prob(0, x, n), p.prob(1, x, n));
+        assert!((p0 + p1 - 1.0).abs() < 1e-6, "{p0} + {p1}");
+        assert!(p0 > 0.8, "near light only gets {p0}");
+        // pick agrees with prob, and u sweeps across both units in order.
+        let (k, pk) = p.pick(x, n, 0.1).unwrap();
+        assert_eq!((k, pk), (0, p0));
+        let (k, pk) = p.pick(x, n, 0.999).unwrap();
+        assert_eq!((k, pk), (1, p1));
+    }
+
+    #[test]
+    fn units_that_cannot_contribute_get_nothing() {
+        let p = two_rooms();
+        // Above both lights: behind their emitting side.
+        assert!(p.pick(Vec3A::new(0.0, 4.0, 0.0), None, 0.5).is_none());
+        // A floor facing down sees neither light.
+        assert!(
+            p.pick(Vec3A::new(0.0, 0.0, 0.0), Some(-Vec3A::Y), 0.5)
+                .is_none()
+        );
+        // A wall at z = -3 facing +z sees only the light at z = 0.
+        let x = Vec3A::new(0.0, 1.0, -3.0);
+        assert_eq!(p.prob(1, x, Some(Vec3A::Z)), 0.0);
+        assert_eq!(p.prob(0, x, Some(Vec3A::Z)), 1.0);
+        // ... even at the edge of the other light's plane: one corner just above the tangent
+        // plane keeps it choosable.
+        let x = Vec3A::new(0.0, 1.0, -6.49);
+        assert!(p.prob(1, x, Some(Vec3A::Z)) > 0.0);
+    }
+
+    #[test]
+    fn one_unit_or_many_fall_back_to_power() {
+        let (area, q) = quad_light(3.0, 0.0, Vec3A::ONE);
+        let one = LightPicker::build(&area, &[0, 0], &[q], &[], None, 10.0);
+        assert!(!one.is_spatial());
+        assert_eq!(
+            one.pick(Vec3A::new(0.0, 4.0, 0.0), None, 0.3),
+            Some((0, 1.0))
+        );
+        let points: Vec<DeltaLight> = (0..=SPATIAL_MAX_UNITS)
+            .map(|i| DeltaLight::Point {
+                position: Vec3A::new(i as f32, 1.0, 0.0),
+                intensity: Vec3A::splat(1.0 + i as f32),
+            })
+            .collect();
+        let many = LightPicker::build(&[], &[], &[], &points, None, 10.0);
+        assert!(!many.is_spatial());
+        let total: f64 = (0..many.units.len()).map(|k| many.power_prob(k)).sum();
+        assert!((total - 1.0).abs() < 1e-12);
+        assert!(many.power_prob(SPATIAL_MAX_UNITS) > many.power_prob(0));
+    }
+}
