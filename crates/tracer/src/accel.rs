@@ -152,7 +152,9 @@ impl Accel {
     #[inline]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<Hit> {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        let hit = crate::traverse::closest_hit(&self.bvh, &self.tris, ray, |t, r| t.intersect(r))?;
+        let hit = crate::traverse::closest_hit(&self.bvh, &self.tris, ray, |t, r| {
+            crate::triangle::intersect(t, r)
+        })?;
         let slot = hit.primitive_id as usize;
         let info = self.info[slot];
         let p = origin + dir * hit.t;
@@ -177,7 +179,9 @@ impl Accel {
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        crate::traverse::unoccluded(&self.bvh, &self.tris, ray, |t, r| t.intersect(r))
+        crate::traverse::unoccluded(&self.bvh, &self.tris, ray, |t, r| {
+            crate::triangle::intersect(t, r)
+        })
     }
 
     /// The obvhs structure itself (for diagnostics and the determinism tests).

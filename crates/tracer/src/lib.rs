@@ -18,6 +18,7 @@ mod microfacet;
 mod sampler;
 mod scene_data;
 mod traverse;
+mod triangle;
 
 pub use crate::accel::{Accel, Hit, InputTri, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
