@@ -70,7 +70,7 @@ pub struct PaperArgs {
     /// Random seed; the same seed gives the same RESULTS.md, byte for byte.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Exactly this many eye-sensor paths per frame (default: the job's, 6144 unless it says otherwise).
+    /// Exactly this many eye-sensor paths per frame (default: the job's; adaptive, 4096-16384, unless it says otherwise).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
     pub eye_samples: Option<u32>,
 }
@@ -118,7 +118,7 @@ pub struct SequenceArgs {
     pub no_report: bool,
     #[command(flatten)]
     pub sampling: SamplingArgs,
-    /// Exactly this many eye-sensor paths per frame (default 6144).
+    /// Exactly this many eye-sensor paths per frame (default: adaptive, 4096-16384).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
     pub eye_samples: Option<u32>,
 }
@@ -207,7 +207,7 @@ pub struct AdaptArgs {
     /// Surround for D from L_A: average, dim or dark.
     #[arg(long, requires = "adapt_luminance")]
     pub surround: Option<String>,
-    /// Exactly this many eye-sensor paths per frame (default 6144).
+    /// Exactly this many eye-sensor paths per frame (default: adaptive, 4096-16384).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
     pub eye_samples: Option<u32>,
 }
