@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The eye sensor's cost and noise (issue 10, goal 3).
 #
-#   scripts/bench/eye-sensor.sh [--eyeadapt BIN] [--frames SPEC | --static-only] [--markdown FILE]
+#   scripts/bench/eye-sensor.sh [--eyeadapt BIN] [--frames SPEC | --static-only] [--eye-samples N]
+#                               [--markdown FILE]
 #
 # 1. Cost: renders the demo job (default all 121 frames; --frames 0-120:10 for a quick look)
 #    and reads the sensor's share of each frame's time from the log ("eye sensor … % of the
@@ -10,16 +11,18 @@
 #    (looking from one room into the next), 49 frames each, eye estimator only, once with
 #    common random numbers off (frame-to-frame σ(u′v′) is then the Monte-Carlo noise) and once
 #    on (the default: the reading repeats exactly).
+# --eye-samples N replaces the default (adaptive) budget with exactly N paths per frame.
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
-BIN="" FRAMES="" MD="" DEMO=1
+BIN="" FRAMES="" MD="" DEMO=1 EYE_N=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --eyeadapt) BIN="$2"; shift 2 ;;
         --frames) FRAMES="$2"; shift 2 ;;
         --markdown) MD="$2"; shift 2 ;;
         --static-only) DEMO=0; shift ;;
+        --eye-samples) EYE_N="$2"; shift 2 ;;
         *) echo "eye-sensor.sh: unknown argument $1" >&2; exit 2 ;;
     esac
 done
@@ -34,6 +37,7 @@ start=0 end=0
 if [ "$DEMO" = 1 ]; then
     args=(sequence --out "$WORK/demo" --log-format plain)
     [ -n "$FRAMES" ] && args+=(--frames "$FRAMES")
+    [ -n "$EYE_N" ] && args+=(--eye-samples "$EYE_N")
     start=$(date +%s.%N)
     "$BIN" "${args[@]}" >"$WORK/demo.log" 2>&1
     end=$(date +%s.%N)
@@ -56,6 +60,8 @@ spp = 1
 list = ["eye"]
 [estimators.eye]
 common_random_numbers = $crn
+${EYE_N:+samples = $EYE_N
+target_std_err_uv = 0}
 [camera_path]
 fps = 24
 keyframes = [ { time = 0.0, position = [$pos], look_at = [$look] },
@@ -105,5 +111,5 @@ for room in ("white", "orange", "blue", "doorway1", "doorway2"):
 PY
 if [ -n "$MD" ]; then
     append_markdown "$MD" "Eye sensor cost and noise" \
-        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}$([ "$DEMO" = 1 ] || echo ' --static-only')" "$OUT"
+        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}$([ "$DEMO" = 1 ] || echo ' --static-only')${EYE_N:+ --eye-samples $EYE_N}" "$OUT"
 fi
