@@ -6,8 +6,8 @@
 use eyeadapt_scene::Scene;
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
-use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
 use obvhs::triangle::Triangle;
@@ -38,6 +38,9 @@ pub struct Accel {
 }
 
 /// A surface hit.
+/// Per-ray traversal state, reused across the rays of a path.
+pub struct RayScratch(Traversal);
+
 #[derive(Clone, Copy, Debug)]
 pub struct Hit {
     pub t: f32,
@@ -148,13 +151,35 @@ impl Accel {
         }
     }
 
+    /// Scratch space for [`Accel::intersect_with`] and [`Accel::unoccluded_with`]; one per
+    /// path saves re-initialising obvhs's traversal stack for every ray.
+    pub fn scratch(&self) -> RayScratch {
+        RayScratch(Traversal::default())
+    }
+
     /// Closest hit along `dir` (unit) from `origin`, within (0, tmax).
     #[inline]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<Hit> {
+        self.intersect_with(&mut self.scratch(), origin, dir, tmax)
+    }
+
+    /// [`Accel::intersect`] with caller-owned scratch space.
+    #[inline]
+    pub fn intersect_with(
+        &self,
+        scratch: &mut RayScratch,
+        origin: Vec3A,
+        dir: Vec3A,
+        tmax: f32,
+    ) -> Option<Hit> {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        let hit = crate::traverse::closest_hit(&self.bvh, &self.tris, ray, |t, r| {
-            crate::triangle::intersect(t, r)
-        })?;
+        let hit = crate::traverse::closest_hit(
+            &self.bvh,
+            &self.tris,
+            ray,
+            &mut scratch.0,
+            crate::triangle::intersect,
+        )?;
         let slot = hit.primitive_id as usize;
         let info = self.info[slot];
         let p = origin + dir * hit.t;
@@ -178,10 +203,26 @@ impl Accel {
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
+        self.unoccluded_with(&mut self.scratch(), origin, dir, tmax)
+    }
+
+    /// [`Accel::unoccluded`] with caller-owned scratch space.
+    #[inline]
+    pub fn unoccluded_with(
+        &self,
+        scratch: &mut RayScratch,
+        origin: Vec3A,
+        dir: Vec3A,
+        tmax: f32,
+    ) -> bool {
         let ray = Ray::new(origin, dir, 0.0, tmax);
-        crate::traverse::unoccluded(&self.bvh, &self.tris, ray, |t, r| {
-            crate::triangle::intersect(t, r)
-        })
+        crate::traverse::unoccluded(
+            &self.bvh,
+            &self.tris,
+            ray,
+            &mut scratch.0,
+            crate::triangle::intersect,
+        )
     }
 
     /// The obvhs structure itself (for diagnostics and the determinism tests).

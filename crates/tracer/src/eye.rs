@@ -137,7 +137,7 @@ pub fn eye_sensor_until(
             let k = (1.0 + cos) * 0.25;
             if k > 0.0
                 && (!settings.fov_only || view.in_frustum(basis, ls.wi))
-                && visible(scene, eye, ls.wi, ls.dist)
+                && visible(scene, &mut scene.accel.scratch(), eye, ls.wi, ls.dist)
             {
                 let w = if ls.delta {
                     1.0
@@ -276,7 +276,10 @@ pub fn eye_direct_per_light(
             let wi = d / d2.sqrt();
             let cos_l = -a.n.dot(wi);
             let kern = (1.0 + wi.dot(axis)) * 0.25;
-            if cos_l > 0.0 && kern > 0.0 && visible(scene, eye, wi, d2.sqrt()) {
+            if cos_l > 0.0
+                && kern > 0.0
+                && visible(scene, &mut scene.accel.scratch(), eye, wi, d2.sqrt())
+            {
                 sum += (luminance(a.emission) * kern * cos_l / d2) as f64;
             }
         }
@@ -292,7 +295,7 @@ pub fn eye_direct_per_light(
             crate::lights::DeltaLight::Point { intensity, .. }
             | crate::lights::DeltaLight::Spot { intensity, .. } => intensity,
         };
-        let v = if kern > 0.0 && visible(scene, eye, wi, d2.sqrt()) {
+        let v = if kern > 0.0 && visible(scene, &mut scene.accel.scratch(), eye, wi, d2.sqrt()) {
             (luminance(i) * kern / d2) as f64
         } else {
             0.0

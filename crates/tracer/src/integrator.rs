@@ -5,6 +5,7 @@
 //! number of path segments. 1 renders only directly visible emitters, 2 adds direct
 //! lighting, −1 is unlimited. Russian roulette starts once `rr_depth` segments have been
 //! traced, with survival probability min(max(throughput), 0.95).
+use crate::accel::RayScratch;
 use crate::bsdf::Bsdf;
 use crate::lights::{LightSet, luminance};
 use crate::sampler::SampleStream;
@@ -114,13 +115,19 @@ fn irradiance_ratio(f: Vec3A) -> Vec3A {
 
 /// Unoccluded-visibility test from a shading point towards a light sample.
 #[inline]
-pub fn visible(scene: &SceneData, from: Vec3A, wi: Vec3A, dist: f32) -> bool {
+pub fn visible(
+    scene: &SceneData,
+    scratch: &mut RayScratch,
+    from: Vec3A,
+    wi: Vec3A,
+    dist: f32,
+) -> bool {
     let tmax = if dist.is_finite() {
         dist * (1.0 - 2e-4)
     } else {
         f32::INFINITY
     };
-    scene.accel.unoccluded(from, wi, tmax)
+    scene.accel.unoccluded_with(scratch, from, wi, tmax)
 }
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
@@ -135,6 +142,7 @@ pub fn trace(
     aovs: bool,
 ) -> PathSample {
     let lights: &LightSet = &scene.lights;
+    let mut scratch = scene.accel.scratch();
     let mut out = PathSample::default();
     let mut beta = Vec3A::ONE;
     // Factors applied to contributions that pass through the first vertex (AOVs).
@@ -158,7 +166,10 @@ pub fn trace(
     };
     loop {
         s.start_group();
-        let Some(hit) = scene.accel.intersect(o, d, f32::INFINITY) else {
+        let Some(hit) = scene
+            .accel
+            .intersect_with(&mut scratch, o, d, f32::INFINITY)
+        else {
             if let Some(env) = lights.env {
                 let w = match prev {
                     Origin::Camera => 1.0,
@@ -226,7 +237,7 @@ pub fn trace(
         {
             let wi_l = frame.to_local(ls.wi);
             let f = bsdf.eval(wo_l, wi_l);
-            if f.max_element() > 0.0 && visible(scene, p, ls.wi, ls.dist) {
+            if f.max_element() > 0.0 && visible(scene, &mut scratch, p, ls.wi, ls.dist) {
                 let w = if ls.delta {
                     1.0
                 } else {

@@ -20,7 +20,7 @@ mod scene_data;
 mod traverse;
 mod triangle;
 
-pub use crate::accel::{Accel, Hit, InputTri, TriInfo, build_params};
+pub use crate::accel::{Accel, Hit, InputTri, RayScratch, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
 pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
