@@ -1,4 +1,5 @@
-# Shared by the benchmark scripts (sourced, not run): the eyeadapt binary and BENCHMARKS.md.
+# Shared by the benchmark scripts (sourced, not run): the eyeadapt binary, the Python venv and
+# BENCHMARKS.md.
 
 # Sets BIN to $1 if given, else builds the release binary of the repository $REPO.
 eyeadapt_binary() {
@@ -24,4 +25,17 @@ append_markdown() {
         echo '```'
     } >>"$md"
     echo "appended to $md" >&2
+}
+
+# Sets VENV (default scripts/bench/.venv-bench, git-ignored) to a venv with mitsuba and numpy,
+# creating it and pip-installing them when missing.
+bench_venv() {
+    VENV="${VENV:-$HERE/.venv-bench}"
+    if [ ! -x "$VENV/bin/python" ]; then
+        echo "creating $VENV" >&2
+        python3 -m venv "$VENV"
+    fi
+    if ! "$VENV/bin/python" -c "import mitsuba, numpy" 2>/dev/null; then
+        "$VENV/bin/pip" install --quiet mitsuba numpy
+    fi
 }

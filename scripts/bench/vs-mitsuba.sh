@@ -15,15 +15,9 @@
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
-VENV="${VENV:-$HERE/.venv-bench}"
-
-if [ ! -x "$VENV/bin/python" ]; then
-    echo "creating $VENV" >&2
-    python3 -m venv "$VENV"
-fi
-if ! "$VENV/bin/python" -c "import mitsuba, numpy" 2>/dev/null; then
-    "$VENV/bin/pip" install --quiet mitsuba numpy
-fi
+# shellcheck source=scripts/bench/common.sh
+. "$HERE/common.sh"
+bench_venv
 
 # LLVM for Dr.Jit's llvm backend: any libLLVM the dynamic loader knows about will do.
 if ! ldconfig -p 2>/dev/null | grep -q 'libLLVM'; then
