@@ -424,8 +424,9 @@ mod tests {
             .collect()
     }
 
-    /// Irradiance at the origin by light sampling, with `n` stratified samples.
-    fn irradiance(lights: &LightSet, n: u32) -> f64 {
+    /// Irradiance at the origin (normal +y) by light sampling, with `n` stratified samples;
+    /// `receiver` is the normal given to the light choice.
+    fn irradiance_with(lights: &LightSet, n: u32, receiver: Option<Vec3A>) -> f64 {
         let key = hash_key(&[7]);
         let normal = Vec3A::Y;
         let mut sum = 0.0f64;
@@ -434,22 +435,60 @@ mod tests {
             let u_pick = st.next_1d();
             let _ = st.next_1d();
             let u = st.next_2d();
-            if let Some(ls) = lights.sample(Vec3A::ZERO, None, u_pick, u) {
+            if let Some(ls) = lights.sample(Vec3A::ZERO, receiver, u_pick, u) {
+                if receiver.is_some() {
+                    assert!(ls.wi.y > 0.0, "a light below the tangent plane was chosen");
+                }
                 sum += (ls.li.x * ls.wi.dot(normal).max(0.0) / ls.pdf) as f64;
             }
         }
         sum / n as f64
     }
 
-    #[test]
-    fn quads_are_sampled_as_parallelograms_with_unchanged_density() {
-        // Closed form: four s/2 × s/2 rectangles with a corner above the receiver, each of form
-        // factor (1/2π)[A/√(1+A²)·atan(B/√(1+A²)) + B/√(1+B²)·atan(A/√(1+B²))], A = B = s/2h.
-        let (s, h) = (1.0f32, 0.7f32);
+    fn irradiance(lights: &LightSet, n: u32) -> f64 {
+        irradiance_with(lights, n, None)
+    }
+
+    /// Irradiance under a unit-radiance s × s square centred at height h above the receiver:
+    /// four s/2 × s/2 rectangles with a corner above it, each of form factor
+    /// (1/2π)[A/√(1+A²)·atan(B/√(1+A²)) + B/√(1+B²)·atan(A/√(1+B²))], A = B = s/2h.
+    fn square_irradiance(s: f32, h: f32) -> f64 {
         let a = (s / (2.0 * h)) as f64;
         let q = (1.0 + a * a).sqrt();
         let f = (2.0 * a / q * (a / q).atan()) / (2.0 * std::f64::consts::PI);
-        let exact = std::f64::consts::PI * 4.0 * f; // L = 1
+        std::f64::consts::PI * 4.0 * f
+    }
+
+    #[test]
+    fn choosing_by_shading_point_keeps_light_sampling_exact() {
+        // Two lights above the receiver at different heights (so their choice probabilities
+        // differ), one under it facing up (below its tangent plane) and one above it facing
+        // away: the last two must never be chosen, the first two weighted exactly.
+        let mut tris = square_light(1.0, 0.7, false);
+        tris.extend(square_light(1.0, 1.5, true));
+        let mut under = square_light(1.0, -0.5, false);
+        let mut away = square_light(1.0, 1.0, false);
+        for t in under.iter_mut().chain(away.iter_mut()) {
+            t.v.swap(1, 2); // facing up
+        }
+        tris.extend(under);
+        tris.extend(away);
+        let lights = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        assert!(lights.spatial_choice());
+        assert_eq!(lights.parallelogram_count(), 4);
+        let exact = square_irradiance(1.0, 0.7) + square_irradiance(1.0, 1.5);
+        let e = irradiance_with(&lights, 16_384, Some(Vec3A::Y));
+        assert!((e / exact - 1.0).abs() < 3e-3, "E {e} vs exact {exact}");
+        // Without a receiver normal the light under the receiver is choosable (and its samples
+        // count 0 here), but the estimate of the upper two stays exact.
+        let e = irradiance_with(&lights, 16_384, None);
+        assert!((e / exact - 1.0).abs() < 1e-2, "E {e} vs exact {exact}");
+    }
+
+    #[test]
+    fn quads_are_sampled_as_parallelograms_with_unchanged_density() {
+        let (s, h) = (1.0f32, 0.7f32);
+        let exact = square_irradiance(s, h);
         for other in [false, true] {
             let tris = square_light(s, h, other);
             let emission = [Vec3A::ONE];
