@@ -132,6 +132,9 @@ pub fn visible(
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
 /// (the AOVs are only filled when `aovs` is set).
+///
+/// The first thing drawn from `s` is the first vertex's 2-D light sample: callers draw their
+/// direction from dimensions 0-1 of a chunk and leave `s` there, so that the two share it.
 pub fn trace(
     scene: &SceneData,
     mut o: Vec3A,
