@@ -53,10 +53,11 @@ pub const ALL_ESTIMATORS: &[&str] = &[
 /// points and overstates the actual error 1.7–2.3× in the demo's rooms and doorways; 3.4e-4 is
 /// chosen so that the actual frame-to-frame error stays at or below 2e-4 everywhere there.
 /// Measured with `scripts/bench/eye-sensor.sh` (static camera, independent noise per frame, 49
-/// frames): inside the three rooms the reading mostly stops at 4096 paths (4096–4180 on average), with σ(u′v′) 1.25–1.56e-4;
-/// looking through the two doorways it takes about 10 240 and 16 384 paths for 1.95e-4 and
-/// 1.82e-4 (a fixed 6144 paths left 2.4–2.5e-4 there). Over the demo's walkthrough the sensor
-/// takes 0.79 % of the frame time on average (median 0.50 %, 90th percentile 1.70 %).
+/// frames): inside the three rooms the reading mostly stops at 4096 paths (4096–4180 on
+/// average), with σ(u′v′) 1.25–1.56e-4; looking through the two doorways it takes about
+/// 10 240 and 16 384 paths for 1.95e-4 and 1.82e-4 (a fixed 6144 paths left 2.4–2.5e-4
+/// there). Over the demo's walkthrough the sensor takes 0.79 % of the frame time on average
+/// (median 0.50 %, 90th percentile 1.70 %).
 /// `target_std_err_uv = 0` (or `--eye-samples N`) gives a fixed budget of `samples` paths.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
