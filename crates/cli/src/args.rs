@@ -70,7 +70,7 @@ pub struct PaperArgs {
     /// Random seed; the same seed gives the same RESULTS.md, byte for byte.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Exactly this many eye-sensor paths per frame (default: the job's; adaptive, 4096-16384, unless it says otherwise).
+    /// Exactly this many eye-sensor paths per frame (default: the job files' fixed 16384).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
     pub eye_samples: Option<u32>,
 }

@@ -37,10 +37,10 @@ pub struct Accel {
     pub bounds_max: Vec3A,
 }
 
-/// A surface hit.
 /// Per-ray traversal state, reused across the rays of a path.
 pub struct RayScratch(Traversal);
 
+/// A surface hit.
 #[derive(Clone, Copy, Debug)]
 pub struct Hit {
     pub t: f32,

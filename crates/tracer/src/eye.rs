@@ -241,6 +241,7 @@ pub fn eye_direct_per_light(
     let (_, _, axis) = view.basis();
     let mut out: Vec<(Vec3A, f64)> = Vec::new();
     let lights = &scene.lights;
+    let mut scratch = scene.accel.scratch();
     let mut groups: Vec<(Vec3A, Vec<usize>, f32)> = Vec::new();
     for (i, a) in lights.area.iter().enumerate() {
         match groups.iter_mut().find(|g| g.0 == a.emission) {
@@ -276,10 +277,7 @@ pub fn eye_direct_per_light(
             let wi = d / d2.sqrt();
             let cos_l = -a.n.dot(wi);
             let kern = (1.0 + wi.dot(axis)) * 0.25;
-            if cos_l > 0.0
-                && kern > 0.0
-                && visible(scene, &mut scene.accel.scratch(), eye, wi, d2.sqrt())
-            {
+            if cos_l > 0.0 && kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
                 sum += (luminance(a.emission) * kern * cos_l / d2) as f64;
             }
         }
@@ -295,7 +293,7 @@ pub fn eye_direct_per_light(
             crate::lights::DeltaLight::Point { intensity, .. }
             | crate::lights::DeltaLight::Spot { intensity, .. } => intensity,
         };
-        let v = if kern > 0.0 && visible(scene, &mut scene.accel.scratch(), eye, wi, d2.sqrt()) {
+        let v = if kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
             (luminance(i) * kern / d2) as f64
         } else {
             0.0
