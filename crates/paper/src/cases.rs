@@ -8,14 +8,14 @@ use super::measure::{
     Region, equal_luminance_hsv, hue_diff, pixels_in_box, reflectance, region_mean,
 };
 use super::sheet::Tiles;
-use super::{CaseInfo, CaseReport, JobRun, Shot, Verdict};
+use super::{CaseInfo, CaseReport, JobRun, Named, Shot, Verdict};
 use eyeadapt_color::{
     D65_XYZ, Estimate, FrameAovs, SeriesParams, SeriesPoint, delta_e_2000, delta_uv, hsv_of_linear,
     luminance, rgb_to_xyz, series_metrics, wcam, whiteness, xyz_to_lab, xyz_to_rgb, xyz_to_uv,
 };
 use eyeadapt_scene::{Light, Scene};
 use eyeadapt_sequencer::Failure;
-use eyeadapt_sequencer::adapt::{Reading, cat_matrix, white_for_cat};
+use eyeadapt_sequencer::adapt::{cat_matrix, white_for_cat};
 use eyeadapt_sequencer::job::Job;
 use eyeadapt_tracer::{Frame, View};
 use glam::{DMat3, DVec2, DVec3};
@@ -45,7 +45,7 @@ fn ests<'a>(run: &JobRun, shot: &'a Shot) -> Vec<Est<'a>> {
     shot.readings
         .iter()
         .map(|r| Est {
-            name: r.estimator,
+            name: r.name,
             estimate: &r.estimate,
             m: cat_matrix(white_for_cat(&r.estimate, D65_XYZ).0, &run.job.adaptation),
         })
@@ -209,7 +209,7 @@ pub(crate) fn diagnostics(
     job: &Job,
     view: &View,
     image: &Frame,
-) -> (Vec<Reading>, BTreeMap<String, f64>) {
+) -> (Vec<Named>, BTreeMap<String, f64>) {
     let mut diag = BTreeMap::new();
     if case.number != 6 {
         return (Vec::new(), diag);
@@ -249,10 +249,9 @@ pub(crate) fn diagnostics(
     );
     diag.insert("bench_pixels".into(), px.len() as f64);
     (
-        vec![Reading {
-            estimator: WCAM_NO_BENCH,
+        vec![Named {
+            name: WCAM_NO_BENCH,
             estimate: est,
-            seconds: 0.0,
         }],
         diag,
     )
@@ -1052,7 +1051,7 @@ fn case6(runs: &[JobRun]) -> Result<(&'static str, Out), Failure> {
     o.metric("frame_enter_room2", enter2.map_or(f64::NAN, f64::from));
     o.metric("frame_mid_room2", mid2.map_or(f64::NAN, f64::from));
     o.metric("frame_enter_room3", enter3.map_or(f64::NAN, f64::from));
-    let names: Vec<&'static str> = shots[0].readings.iter().map(|r| r.estimator).collect();
+    let names: Vec<&'static str> = shots[0].readings.iter().map(|r| r.name).collect();
     let mut t = Table::new(&[
         "estimator",
         "mean step",

@@ -84,9 +84,9 @@ and <code>shared/design/estimators.md</code> §7–§8.</p>
         name = escape(&m.job_name),
         source = escape(&m.job_source),
         n = m.frames.len(),
-        frames = escape(&eyeadapt_sequencer::manifest::frames_to_spec(
-            &m.frames.keys().copied().collect::<Vec<_>>()
-        )),
+        frames = escape(
+            &eyeadapt_sequencer::FrameSet::from_frames(m.frames.keys().copied()).to_string()
+        ),
         fps = m.fps,
         version = env!("CARGO_PKG_VERSION"),
         tool = escape(&m.tool),

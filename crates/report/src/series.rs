@@ -11,7 +11,7 @@ use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::{AdaptationSettings, cat_matrix};
 use eyeadapt_sequencer::manifest::Manifest;
 use eyeadapt_sequencer::output::read_exr;
-use eyeadapt_sequencer::sequence::frame_name;
+use eyeadapt_sequencer::pipeline::frame_name;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::collections::HashMap;

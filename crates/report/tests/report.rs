@@ -3,10 +3,10 @@ use eyeadapt_color::{
     Cat, D65_XYZ, Estimate, adaptation_matrix_rgb, delta_e_2000, rgb_to_xyz, xyz_to_lab, xyz_to_uv,
 };
 use eyeadapt_report::{ReportOptions, VideoOutcome, report};
-use eyeadapt_sequencer::adapt::{CSV_HEADER, Reading, csv_row};
+use eyeadapt_sequencer::adapt::{CSV_HEADER, csv_row};
 use eyeadapt_sequencer::manifest::{FrameEntry, Manifest, file_entry};
 use eyeadapt_sequencer::output::{atomic_write_bytes, write_exr, write_png};
-use eyeadapt_sequencer::sequence::frame_name;
+use eyeadapt_sequencer::pipeline::frame_name;
 use eyeadapt_tracer::Frame;
 use glam::{DVec3, Vec3};
 use std::collections::{BTreeMap, HashMap};
@@ -71,12 +71,7 @@ fn write_sequence(
                 Some(w) => Estimate::new(w, 100),
                 None => Estimate::undefined("no_white_pixels"),
             };
-            let r = Reading {
-                estimator: name,
-                estimate,
-                seconds: 0.0,
-            };
-            rows.push_str(&csv_row(f, time, &r, &[], Vec3::ZERO));
+            rows.push_str(&csv_row(f, time, name, &estimate, &[], Vec3::ZERO));
             let rel = format!("frames/{name}/{}", frame_name(f, "png"));
             write_png(&dir.join(&rel), &fr.rgb, W, H, 0.0).unwrap();
             files.push(rel);
