@@ -167,7 +167,7 @@ and <code>shared/design/estimators.md</code> §7–§8.</p>
         "<tr><td class=\"name\">estimators</td><td class=\"name\">{}</td></tr>",
         escape(&m.estimators.join(", "))
     );
-    for (k, v) in &m.settings {
+    for (k, v) in &m.settings.entries() {
         let _ = writeln!(
             h,
             "<tr><td class=\"name\">{}</td><td class=\"name\">{}</td></tr>",

@@ -16,6 +16,7 @@ pub mod pipeline;
 pub mod progress;
 pub mod resources;
 pub mod sequence;
+pub mod settings;
 pub mod still;
 
 pub use crate::error::Failure;

@@ -4,6 +4,7 @@
 //! resumed run produces the same manifest bytes as an uninterrupted one.
 use crate::error::Failure;
 use crate::output::atomic_write_bytes;
+use crate::settings::RunSettings;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -46,8 +47,8 @@ pub struct Manifest {
     pub estimators: Vec<String>,
     pub fps: f64,
     /// The resolved job settings (resolution, spp, depths, seed, CAT, D, eye samples,
-    /// temporal filters…) as text, for reports.
-    pub settings: BTreeMap<String, String>,
+    /// temporal filters…), for reports.
+    pub settings: RunSettings,
     pub frames: BTreeMap<u32, FrameEntry>,
 }
 

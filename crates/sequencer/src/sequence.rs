@@ -18,6 +18,7 @@ use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry};
 use crate::output::atomic_write_bytes;
 use crate::pipeline::{FrameResult, Layout, WriteSpec, frame_name, write_images};
 use crate::progress::{LogFormat, Progress};
+use crate::settings::RunSettings;
 use eyeadapt_tracer::SceneData;
 use std::fs::OpenOptions;
 use std::io::Write;
@@ -168,43 +169,9 @@ fn new_manifest(job: &Job, planned: &FrameSet, all: &FrameSet) -> Manifest {
         job_frames: all.to_string(),
         estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
         fps: job.path.fps,
-        settings: job_settings(job),
+        settings: RunSettings::of_job(job),
         frames: Default::default(),
     }
-}
-
-/// The job's resolved settings as text, recorded in the manifest for reports.
-pub fn job_settings(job: &Job) -> std::collections::BTreeMap<String, String> {
-    let mut s = std::collections::BTreeMap::new();
-    let mut put = |k: &str, v: String| {
-        s.insert(k.to_string(), v);
-    };
-    put("resolution", format!("{}x{}", job.width, job.height));
-    put("spp", job.spp.to_string());
-    put("max_depth", job.path_settings.max_depth.to_string());
-    put("rr_depth", job.path_settings.rr_depth.to_string());
-    put("seed", job.seed.to_string());
-    put("fps", job.path.fps.to_string());
-    put("cat", job.adaptation.cat.to_string());
-    put("degree", job.adaptation.degree.to_string());
-    put("eye_samples", job.estimator_config.eye.samples.to_string());
-    put(
-        "eye_min_samples",
-        job.estimator_config.eye.min_samples().to_string(),
-    );
-    put(
-        "eye_target_std_err_uv",
-        job.estimator_config.eye.target_std_err_uv.to_string(),
-    );
-    put(
-        "eye_common_random_numbers",
-        job.estimator_config.eye.common_random_numbers.to_string(),
-    );
-    put("wcam_w", job.estimator_config.wcam.w.to_string());
-    put("temporal_filters", job.temporal.filters.join(","));
-    put("exposure", job.exposure.to_string());
-    put("scene", job.scene.source.display().to_string());
-    s
 }
 
 /// Renders the planned frames of `job` into `o.out`.
