@@ -19,6 +19,7 @@ mod camera;
 mod camera_path;
 mod diagnostic;
 mod format;
+pub mod gltf;
 mod light;
 mod load;
 mod material;
