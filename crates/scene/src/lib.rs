@@ -20,6 +20,7 @@ mod camera;
 mod camera_path;
 mod diagnostic;
 mod format;
+pub mod gltf;
 mod instance;
 mod light;
 mod load;
