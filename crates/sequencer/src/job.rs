@@ -56,7 +56,7 @@ struct JobFile {
     seed: Option<Spanned<i64>>,
     frames: Option<Spanned<String>>,
     render: Option<RenderTable>,
-    camera_path: Option<Spanned<toml::Value>>,
+    camera_path: Option<Spanned<CameraPath>>,
     estimators: Option<Spanned<EstimatorConfig>>,
     adaptation: Option<Spanned<AdaptationConfig>>,
     temporal: Option<Spanned<TemporalTable>>,
@@ -222,19 +222,14 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         map,
         errors: Vec::new(),
     };
-    let (scene_spec, scene) = load_scene(&raw.scene, dir, &mut p);
+    let scene = load_scene(&raw.scene, dir, &mut p);
     let (sampling, exposure) = render_table(raw.render.as_ref(), &mut p);
     let seed = job_seed(o, raw.seed.as_ref(), scene.as_ref(), &mut p);
     let sampling = o.sampling.or(sampling);
     let (estimators, estimator_config) = estimators(raw.estimators.as_ref(), o, &mut p);
     let adaptation = adaptation(raw.adaptation.as_ref(), &mut p);
     let temporal = temporal(raw.temporal.as_ref(), &mut p);
-    let path = camera_path(
-        raw.camera_path.as_ref(),
-        scene.as_ref(),
-        &scene_spec,
-        &mut p,
-    );
+    let path = camera_path(raw.camera_path.as_ref(), scene.as_ref(), &mut p);
     let (Some(scene), Some(path)) = (scene, path) else {
         return Err(Failure::Input(p.errors.join("\n")));
     };
@@ -280,8 +275,8 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     Ok(job)
 }
 
-/// The scene's spec as loaded (paths relative to the job file) and the scene, if it loads.
-fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> (String, Option<Scene>) {
+/// The scene (its path relative to the job file), if it loads.
+fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> Option<Scene> {
     let given = spec.get_ref();
     let scene_spec = if given.starts_with("builtin:") {
         given.clone()
@@ -289,7 +284,7 @@ fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> (String, 
         dir.join(given).display().to_string()
     };
     match eyeadapt_scene::resolve_scene(&scene_spec) {
-        Ok(s) => (scene_spec, Some(s)),
+        Ok(s) => Some(s),
         Err(e) => {
             p.at(
                 spec.span().start,
@@ -297,7 +292,7 @@ fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> (String, 
             );
             p.errors
                 .extend(e.diagnostics.iter().map(|d| format!("  {d}")));
-            (scene_spec, None)
+            None
         }
     }
 }
@@ -401,33 +396,23 @@ fn temporal(table: Option<&Spanned<TemporalTable>>, p: &mut Problems) -> Tempora
     temporal
 }
 
-/// The job's camera path, else the scene's.
+/// The job's camera path, else the scene's (already validated by the scene's loader).
 fn camera_path(
-    table: Option<&Spanned<toml::Value>>,
+    table: Option<&Spanned<CameraPath>>,
     scene: Option<&Scene>,
-    scene_spec: &str,
     p: &mut Problems,
 ) -> Option<CameraPath> {
     match (table, scene.and_then(|s| s.camera_path.clone())) {
-        (Some(v), _) => match path_from_toml(v.get_ref().clone()) {
-            Ok(path) => Some(path),
-            Err(es) => {
-                for e in es {
+        (Some(v), _) => match v.get_ref().validate() {
+            Ok(()) => Some(v.get_ref().clone()),
+            Err(problems) => {
+                for e in problems {
                     p.at(v.span().start, format!("camera_path: {e}"));
                 }
                 None
             }
         },
-        (None, Some((v, line, col))) => match path_from_toml(v) {
-            Ok(path) => Some(path),
-            Err(es) => {
-                p.errors.extend(
-                    es.iter()
-                        .map(|e| format!("{scene_spec}:{line}:{col}: error: camera_path: {e}")),
-                );
-                None
-            }
-        },
+        (None, Some(path)) => Some(path),
         (None, None) => {
             if scene.is_some() {
                 p.at(
@@ -468,16 +453,6 @@ fn job_frames(spec: Option<&Spanned<String>>, path: &CameraPath, p: &mut Problem
     }
 }
 
-/// Deserialises and validates a `[camera_path]` table; every problem as a message.
-fn path_from_toml(v: toml::Value) -> Result<CameraPath, Vec<String>> {
-    let path: CameraPath = v
-        .try_into()
-        .map_err(|e: toml::de::Error| vec![e.message().trim().replace('\n', " ")])?;
-    path.validate()
-        .map_err(|ps| ps.iter().map(|p| p.to_string()).collect::<Vec<_>>())?;
-    Ok(path)
-}
-
 /// Fingerprint of everything that changes the rendered bits. Thread count, frame selection,
 /// chunking and the output directory are deliberately not part of it.
 pub fn job_hash(job: &Job) -> String {
@@ -499,6 +474,9 @@ pub fn job_hash(job: &Job) -> String {
         job.temporal
     ));
     let s = &job.scene;
+    for inst in &s.instances {
+        h.update(format!("{inst:?}\n"));
+    }
     for m in &s.meshes {
         for p in &m.positions {
             h.update(bytes3(p.to_array()));
@@ -511,11 +489,16 @@ pub fn job_hash(job: &Job) -> String {
         for n in &m.normals {
             h.update(bytes3(n.to_array()));
         }
-        h.update(format!("{:?}\n", m.material));
+        for uv in &m.uvs {
+            h.update(format!("{uv:?}"));
+        }
+        for c in &m.colors {
+            h.update(bytes3(c.to_array()));
+        }
     }
     h.update(format!(
-        "{:?}\n{:?}\n{:?}\n",
-        s.materials, s.lights, s.environment
+        "{:?}\n{:?}\n{:?}\n{:?}\n",
+        s.materials, s.textures, s.lights, s.environment
     ));
     for f in 0..job.path.frame_count() {
         let v = job.view(f as u32);

@@ -464,10 +464,7 @@ impl<'t> Builder<'t> {
 
     fn check_lights(&mut self) {
         let s = &self.scene;
-        let emitters = s
-            .meshes
-            .iter()
-            .any(|m| s.material(m.material).is_emissive());
+        let emitters = s.has_emissive_instance();
         if s.meshes.is_empty() && s.lights.is_empty() && s.environment.is_none() {
             self.error(
                 0,
@@ -512,7 +509,9 @@ impl<'t> Builder<'t> {
             "twosided" => return self.twosided(o),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
-                Bsdf::Diffuse { reflectance }
+                Bsdf::Diffuse {
+                    reflectance: reflectance.into(),
+                }
             }
             "conductor" | "roughconductor" => self.conductor(o),
             "plastic" | "roughplastic" => self.plastic(o),
@@ -662,10 +661,10 @@ impl<'t> Builder<'t> {
         };
         let specular_reflectance = self.colour(o, "specular_reflectance").unwrap_or(Rgb::ONE);
         Bsdf::Conductor {
-            alpha,
+            alpha: alpha.into(),
             eta,
             k,
-            specular_reflectance,
+            specular_reflectance: specular_reflectance.into(),
         }
     }
 
@@ -739,8 +738,8 @@ impl<'t> Builder<'t> {
             );
         }
         Bsdf::Plastic {
-            reflectance,
-            alpha: alpha.max(0.01),
+            reflectance: reflectance.into(),
+            alpha: alpha.max(0.01).into(),
             ior: ior as f32,
         }
     }
@@ -785,7 +784,7 @@ impl<'t> Builder<'t> {
                             positions: p.positions,
                             normals: p.normals,
                             indices: p.indices,
-                            material: None,
+                            ..Mesh::default()
                         }]
                     })
                 };
@@ -832,7 +831,7 @@ impl<'t> Builder<'t> {
                     Some(b) => (b.bsdf, b.name),
                     None => (
                         Bsdf::Diffuse {
-                            reflectance: Rgb::splat(0.5),
+                            reflectance: Rgb::splat(0.5).into(),
                         },
                         "default diffuse".to_string(),
                     ),
@@ -872,7 +871,6 @@ impl<'t> Builder<'t> {
             } else {
                 format!("{label} {}", mesh.name)
             };
-            mesh.material = material;
             for p in &mut mesh.positions {
                 *p = m.transform_point3(*p);
             }
@@ -894,7 +892,9 @@ impl<'t> Builder<'t> {
                 shapes::flip(mesh);
             }
         }
-        self.scene.meshes.extend(meshes);
+        for mesh in meshes {
+            self.scene.add_world_mesh(mesh, material);
+        }
     }
 
     /// The shape's BSDF: `Ok(None)` for none (Mitsuba's default diffuse), `Err` on errors.
