@@ -1,5 +1,6 @@
 //! BSDFs in the local shading frame (+z = shading normal, turned towards the viewer, so every
-//! surface is two-sided for reflection). `f` values exclude the cosine.
+//! surface is two-sided for reflection; a transmitting BSDF samples `wi.z < 0`). `f` values
+//! exclude the cosine.
 #[cfg(doc)]
 use crate::microfacet::internal_diffuse_reflectance;
 use crate::microfacet::{Ggx, fresnel_conductor, fresnel_dielectric};
@@ -104,6 +105,18 @@ impl Bsdf {
             eta: ior,
             inv_eta2: 1.0 / (ior * ior),
             spec_weight: 1.0 / (1.0 + d_mean),
+        }
+    }
+
+    /// True when the BSDF can send light through the surface: its samples may then have
+    /// `wi.z < 0` (the far side of the shading frame), and light arrives from both sides. Every
+    /// BSDF here only reflects; the match is exhaustive so that a new one has to say.
+    pub fn has_transmission(&self) -> bool {
+        match self {
+            Bsdf::Diffuse { .. }
+            | Bsdf::RoughConductor { .. }
+            | Bsdf::Mirror { .. }
+            | Bsdf::Plastic { .. } => false,
         }
     }
 

@@ -20,6 +20,7 @@ mod light_pick;
 mod lights;
 mod material;
 mod microfacet;
+mod path_state;
 mod sampler;
 mod scene_data;
 mod texture;
