@@ -12,9 +12,22 @@ impl Ctx<'_> {
             .as_ref()
             .map_or(Rgb::ZERO, |e| self.colour(e, "emission"));
         let allowed: &[&str] = match kind {
-            "diffuse" => &["reflectance"],
-            "conductor" => &["roughness", "eta", "k", "specular_reflectance"],
-            "plastic" => &["reflectance", "roughness", "ior"],
+            "diffuse" => &["reflectance", "reflectance_texture"],
+            "conductor" => &[
+                "roughness",
+                "roughness_texture",
+                "eta",
+                "k",
+                "specular_reflectance",
+                "specular_reflectance_texture",
+            ],
+            "plastic" => &[
+                "reflectance",
+                "reflectance_texture",
+                "roughness",
+                "roughness_texture",
+                "ior",
+            ],
             other => {
                 self.error(
                     m.kind.span().start,
@@ -25,7 +38,14 @@ impl Ctx<'_> {
                 return Material::error();
             }
         };
-        let present: [(&str, Option<usize>); 6] = [
+        let at = |t: &Option<toml::Spanned<String>>| t.as_ref().map(|v| v.span().start);
+        let present: [(&str, Option<usize>); 9] = [
+            ("reflectance_texture", at(&m.reflectance_texture)),
+            ("roughness_texture", at(&m.roughness_texture)),
+            (
+                "specular_reflectance_texture",
+                at(&m.specular_reflectance_texture),
+            ),
             (
                 "reflectance",
                 m.reflectance.as_ref().map(|v| v.span().start),
@@ -79,10 +99,20 @@ impl Ctx<'_> {
         };
         let bsdf = match kind {
             "diffuse" => Bsdf::Diffuse {
-                reflectance: Param::Const(reflectance(self)),
+                reflectance: self.param(
+                    &name,
+                    &m.reflectance_texture,
+                    m.reflectance.is_some(),
+                    reflectance,
+                ),
             },
             "conductor" => {
-                let alpha = roughness(self);
+                let alpha = self.param(
+                    &name,
+                    &m.roughness_texture,
+                    m.roughness.is_some(),
+                    roughness,
+                );
                 // Default: gold, Mitsuba's `Au` at the Rec.709 primaries.
                 let eta = m
                     .eta
@@ -91,15 +121,21 @@ impl Ctx<'_> {
                 let k =
                     m.k.as_ref()
                         .map_or(Rgb::new(3.983, 2.386, 1.603), |v| self.colour(v, "k"));
-                let specular_reflectance = m
-                    .specular_reflectance
-                    .as_ref()
-                    .map_or(Rgb::ONE, |v| self.colour(v, "specular_reflectance"));
+                let specular_reflectance = self.param(
+                    &name,
+                    &m.specular_reflectance_texture,
+                    m.specular_reflectance.is_some(),
+                    |cx| {
+                        m.specular_reflectance
+                            .as_ref()
+                            .map_or(Rgb::ONE, |v| cx.colour(v, "specular_reflectance"))
+                    },
+                );
                 Bsdf::Conductor {
-                    alpha: Param::Const(alpha),
+                    alpha,
                     eta,
                     k,
-                    specular_reflectance: Param::Const(specular_reflectance),
+                    specular_reflectance,
                 }
             }
             _ => {
@@ -111,9 +147,18 @@ impl Ctx<'_> {
                     }
                     x
                 });
+                let reflectance = self.param(
+                    &name,
+                    &m.reflectance_texture,
+                    m.reflectance.is_some(),
+                    reflectance,
+                );
+                let alpha = self.param(&name, &m.roughness_texture, m.roughness.is_some(), |cx| {
+                    roughness(cx).max(0.01)
+                });
                 Bsdf::Plastic {
-                    reflectance: Param::Const(reflectance(self)),
-                    alpha: Param::Const(roughness(self).max(0.01)),
+                    reflectance,
+                    alpha,
                     ior,
                 }
             }
@@ -122,6 +167,40 @@ impl Ctx<'_> {
             name,
             bsdf,
             emission,
+        }
+    }
+
+    /// A parameter given either as a constant (`constant` reads it) or by `texture` name; both
+    /// at once, or an unknown texture, is an error.
+    fn param<T>(
+        &mut self,
+        material: &str,
+        texture: &Option<toml::Spanned<String>>,
+        constant_given: bool,
+        constant: impl FnOnce(&mut Self) -> T,
+    ) -> Param<T> {
+        let Some(t) = texture else {
+            return Param::Const(constant(self));
+        };
+        if constant_given {
+            self.error(
+                t.span().start,
+                format!("material \"{material}\": give a constant or a texture, not both"),
+            );
+        }
+        match self.textures.get(t.get_ref()) {
+            Some(Some(id)) => Param::Texture(*id),
+            Some(None) => Param::Const(constant(self)),
+            None => {
+                self.error(
+                    t.span().start,
+                    format!(
+                        "material \"{material}\": unknown texture \"{}\" (textures are defined in [[textures]])",
+                        t.get_ref()
+                    ),
+                );
+                Param::Const(constant(self))
+            }
         }
     }
 }

@@ -6,9 +6,12 @@ mod format;
 mod light;
 mod material;
 mod shape;
+mod texture;
 
 use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
-use crate::{Camera, CameraPath, MaterialId, RenderDefaults, Rgb, Scene};
+use crate::{
+    Camera, CameraPath, ImageCache, MaterialId, MeshId, RenderDefaults, Rgb, Scene, TextureId,
+};
 use format::{CameraDef, SceneFile, V3};
 use glam::Vec3;
 use std::collections::HashMap;
@@ -39,6 +42,9 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         map,
         diags: Vec::new(),
         dir: path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        textures: HashMap::new(),
+        images: ImageCache::default(),
+        named_shapes: HashMap::new(),
     };
     let scene = cx.scene(raw);
     let (errors, warnings): (Vec<_>, Vec<_>) = cx
@@ -64,6 +70,10 @@ struct Ctx<'a> {
     map: SourceMap<'a>,
     diags: Vec<Diagnostic>,
     dir: PathBuf,
+    textures: HashMap<String, Option<TextureId>>,
+    images: ImageCache,
+    /// Shapes with a `name`: their meshes (in object space) and materials.
+    named_shapes: HashMap<String, Vec<(MeshId, Option<MaterialId>)>>,
 }
 
 impl Ctx<'_> {
@@ -124,6 +134,20 @@ impl Ctx<'_> {
         if let Some(r) = &raw.render {
             scene.render = self.render(r);
         }
+        for t in &raw.textures {
+            let name = t.get_ref().name.get_ref().clone();
+            if self.textures.contains_key(&name) {
+                self.error(
+                    t.get_ref().name.span().start,
+                    format!("texture \"{name}\" is defined twice"),
+                );
+                continue;
+            }
+            // A texture that failed to load is remembered as None: its users are not told
+            // again that it does not exist.
+            let id = self.texture(t).map(|tex| scene.add_texture(tex));
+            self.textures.insert(name, id);
+        }
         let mut names: HashMap<String, MaterialId> = HashMap::new();
         for m in &raw.materials {
             let name = m.get_ref().name.get_ref().clone();
@@ -139,6 +163,9 @@ impl Ctx<'_> {
         }
         for (i, s) in raw.shapes.iter().enumerate() {
             self.shape(i, s, &names, &mut scene);
+        }
+        for inst in &raw.instances {
+            self.instance(inst, &names, &mut scene);
         }
         for l in &raw.lights {
             if let Some(light) = self.light(l) {

@@ -1,6 +1,6 @@
 //! `[[shapes]]` and their transforms.
 use super::Ctx;
-use super::format::{ShapeDef, TransformDef};
+use super::format::{InstanceDef, ShapeDef, TransformDef};
 use crate::{MaterialId, Mesh, Scene, Transform, box_mesh, obj, quad_mesh, shapes, sphere_mesh};
 use glam::{Mat4, Quat, Vec3};
 use std::collections::HashMap;
@@ -232,15 +232,21 @@ impl Ctx<'_> {
                         for w in loaded.warnings {
                             self.warning(file.span().start, w);
                         }
-                        loaded
-                            .meshes
-                            .into_iter()
-                            .zip(loaded.materials)
-                            .map(|(m, mat)| match material {
-                                Some(_) => (m, material),
-                                None => (m, mat.map(|mm| scene.add_material(mm))),
-                            })
-                            .collect()
+                        let mut out = Vec::new();
+                        let parts = loaded.meshes.into_iter().zip(loaded.materials);
+                        for ((m, mat), map) in parts.zip(loaded.diffuse_maps) {
+                            let mat = match (material, mat) {
+                                (Some(_), _) => material,
+                                (None, Some(mm)) => {
+                                    let mm =
+                                        self.diffuse_map(mm, map, &path, file.span().start, scene);
+                                    Some(scene.add_material(mm))
+                                }
+                                (None, None) => None,
+                            };
+                            out.push((m, mat));
+                        }
+                        out
                     }
                     Err(e) => {
                         self.error(file.span().start, e);
@@ -249,6 +255,16 @@ impl Ctx<'_> {
                 }
             }
         };
+        if let Some(name) = &d.name {
+            self.named_shape(name, d, meshes, transform, scene);
+            return;
+        }
+        if d.template == Some(true) {
+            self.error(
+                s.span().start,
+                format!("shapes[{index}]: `template` needs a `name` for instances to use"),
+            );
+        }
         for (m, _) in &mut meshes {
             if m.name.is_empty() {
                 m.name = format!("shapes[{index}] ({kind})");
@@ -272,5 +288,125 @@ impl Ctx<'_> {
         for (m, material) in meshes {
             scene.add_world_mesh(m, material);
         }
+    }
+}
+
+impl Ctx<'_> {
+    /// A shape with a `name`: its meshes stay in object space, placed by its own transform
+    /// (unless it is a `template`) and by `[[instances]]`.
+    fn named_shape(
+        &mut self,
+        name: &Spanned<String>,
+        d: &ShapeDef,
+        meshes: Vec<(Mesh, Option<MaterialId>)>,
+        transform: Transform,
+        scene: &mut Scene,
+    ) {
+        if self.named_shapes.contains_key(name.get_ref()) {
+            self.error(
+                name.span().start,
+                format!("shape \"{}\" is defined twice", name.get_ref()),
+            );
+            return;
+        }
+        let mut placed = Vec::new();
+        for (mut m, material) in meshes {
+            if m.name.is_empty() {
+                m.name = format!("shape \"{}\"", name.get_ref());
+            }
+            if d.flip_normals == Some(true) {
+                shapes::flip(&mut m);
+            }
+            let id = scene.add_mesh(m);
+            if d.template != Some(true) {
+                scene.add_instance(id, material, transform);
+            }
+            placed.push((id, material));
+        }
+        self.named_shapes.insert(name.get_ref().clone(), placed);
+    }
+
+    /// `[[instances]]`: another placement of a named shape, optionally in another material.
+    pub(super) fn instance(
+        &mut self,
+        i: &Spanned<InstanceDef>,
+        names: &HashMap<String, MaterialId>,
+        scene: &mut Scene,
+    ) {
+        let d = i.get_ref();
+        let Some(meshes) = self.named_shapes.get(d.shape.get_ref()).cloned() else {
+            self.error(
+                d.shape.span().start,
+                format!(
+                    "instance of unknown shape \"{}\" (instances name a shape with `name`, defined above them)",
+                    d.shape.get_ref()
+                ),
+            );
+            return;
+        };
+        let material = match &d.material {
+            Some(n) => match names.get(n.get_ref()) {
+                Some(id) => Some(Some(*id)),
+                None => {
+                    self.error(
+                        n.span().start,
+                        format!("unknown material \"{}\"", n.get_ref()),
+                    );
+                    return;
+                }
+            },
+            None => None,
+        };
+        let transform = d
+            .transform
+            .as_ref()
+            .map(|t| self.transform(t))
+            .unwrap_or_default();
+        for (mesh, own) in meshes {
+            scene.add_instance(mesh, material.unwrap_or(own), transform);
+        }
+    }
+}
+
+impl Ctx<'_> {
+    /// An MTL material whose `map_Kd` names a file: its reflectance becomes that bitmap
+    /// (resolved next to the OBJ, decoded from sRGB). A file that cannot be read is an error.
+    fn diffuse_map(
+        &mut self,
+        mut m: crate::Material,
+        map: Option<String>,
+        obj: &std::path::Path,
+        at: usize,
+        scene: &mut Scene,
+    ) -> crate::Material {
+        let Some(file) = map else { return m };
+        let path = obj
+            .parent()
+            .unwrap_or(std::path::Path::new("."))
+            .join(&file);
+        match self.images.get(&path, false) {
+            Ok(image) => {
+                let id = scene.add_texture(crate::Texture::Bitmap(crate::Bitmap {
+                    filename: path,
+                    image,
+                    raw: false,
+                    filter: crate::FilterType::Bilinear,
+                    wrap: crate::WrapMode::Repeat,
+                    to_uv: glam::Affine2::IDENTITY,
+                }));
+                m.bsdf = crate::Bsdf::Diffuse {
+                    reflectance: crate::Param::Texture(id),
+                };
+            }
+            Err(e) => self.error(
+                at,
+                format!(
+                    "OBJ {}: material \"{}\": map_Kd: {e}",
+                    obj.display(),
+                    m.name
+                ),
+            ),
+        }
+        m
     }
 }
