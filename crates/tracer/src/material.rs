@@ -96,15 +96,4 @@ impl Materials {
             ),
         }
     }
-
-    /// The diffuse (base) reflectance at `si`: what the estimators take as the surface colour
-    /// (zero for conductors, whose colour is specular).
-    pub fn diffuse_reflectance(&self, si: &SurfaceInteraction) -> Vec3A {
-        match self.entries[si.material as usize].bsdf {
-            SceneBsdf::Diffuse { reflectance } | SceneBsdf::Plastic { reflectance, .. } => {
-                self.rgb(reflectance, si)
-            }
-            SceneBsdf::Conductor { .. } => Vec3A::ZERO,
-        }
-    }
 }
