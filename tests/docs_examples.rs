@@ -90,3 +90,68 @@ fn job_format_example_parses() {
     assert!(out.contains("EYEADAPT_FRAMES=72"), "{out}");
     assert!(out.contains("EYEADAPT_CHUNKS=8"), "{out}");
 }
+
+#[test]
+fn texture_and_instance_example_loads_and_renders() {
+    use eyeadapt_scene::{Bsdf, Param, Texture};
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md"))
+        .unwrap();
+    let example = fenced_toml(&doc)
+        .into_iter()
+        .find(|t| t.contains("[[instances]]"))
+        .expect("the textures and instances example");
+    let dir = tempfile::tempdir().unwrap();
+    for sub in ["meshes", "textures"] {
+        std::fs::create_dir(dir.path().join(sub)).unwrap();
+    }
+    let mut tiles = image::RgbImage::new(4, 4);
+    for (x, y, p) in tiles.enumerate_pixels_mut() {
+        *p = image::Rgb(if (x + y) % 2 == 0 {
+            [200, 60, 40]
+        } else {
+            [240, 240, 230]
+        });
+    }
+    tiles.save(dir.path().join("textures/tiles.png")).unwrap();
+    // A tetrahedron with texture coordinates and vertex colours.
+    std::fs::write(
+        dir.path().join("meshes/vase.obj"),
+        "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nv 0 0 1 1 1 0\n\
+         vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n\
+         f 1/1 3/3 2/2\nf 1/1 2/2 4/4\nf 1/1 4/4 3/3\nf 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, &example).unwrap();
+    let s = eyeadapt_scene::load_scene(&scene)
+        .unwrap_or_else(|e| panic!("documented example fails:\n{e}"));
+    assert_eq!(s.textures.len(), 3);
+    assert!(matches!(&s.textures[0], Texture::Bitmap(b) if b.image.width == 4));
+    assert!(matches!(
+        s.materials[0].bsdf,
+        Bsdf::Diffuse {
+            reflectance: Param::Texture(_)
+        }
+    ));
+    // Three quads placed once, the vase mesh (a template) twice, sharing one mesh.
+    assert_eq!(s.meshes.len(), 4);
+    assert_eq!(s.instances.len(), 5);
+    let vase = &s.meshes[3];
+    assert_eq!(vase.uvs.len(), 4);
+    let at = |p: [f32; 3]| {
+        vase.positions
+            .iter()
+            .position(|q| q.to_array() == p)
+            .unwrap()
+    };
+    // vt 0 1 at (0, 1, 0): OBJ's v grows upwards, Mitsuba's down the image.
+    assert_eq!(vase.uvs[at([0.0, 1.0, 0.0])].to_array(), [0.0, 0.0]);
+    assert_eq!(vase.uvs[at([1.0, 0.0, 0.0])].to_array(), [1.0, 1.0]);
+    assert_eq!(vase.colors[at([1.0, 0.0, 0.0])].to_array(), [0.0, 1.0, 0.0]);
+    let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .args(["render", scene.to_str().unwrap(), "--spp", "2"])
+        .args(["--out", dir.path().join("out").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

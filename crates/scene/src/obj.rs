@@ -1,6 +1,8 @@
-//! Wavefront OBJ through `tobj`, with MTL `Kd` (diffuse reflectance) and `Ke` (emission).
+//! Wavefront OBJ through `tobj`: positions, normals, texture coordinates (`vt`, v flipped to
+//! Mitsuba's image-down convention as its `flip_tex_coords` does), vertex colours, and MTL `Kd`
+//! (diffuse reflectance), `map_Kd` (its texture) and `Ke` (emission).
 use crate::{Bsdf, Material, MaterialId, Mesh, Param, Rgb};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::cell::RefCell;
 use std::path::Path;
 
@@ -10,6 +12,9 @@ pub struct LoadedObj {
     pub meshes: Vec<Mesh>,
     /// Per mesh: the MTL material, or `None` for the error material.
     pub materials: Vec<Option<Material>>,
+    /// Per mesh: the material's `map_Kd` file (relative to the OBJ's directory, as written), to
+    /// replace its constant reflectance.
+    pub diffuse_maps: Vec<Option<String>>,
     pub warnings: Vec<String>,
 }
 
@@ -220,6 +225,7 @@ fn convert(
     let mut out = LoadedObj {
         meshes: Vec::new(),
         materials: Vec::new(),
+        diffuse_maps: Vec::new(),
         warnings,
     };
     let mut warned_unknown = false;
@@ -281,14 +287,44 @@ fn convert(
                 }
             }
         };
+        let uvs: Vec<Vec2> = if m.texcoords.len() / 2 == positions.len() {
+            m.texcoords
+                .chunks_exact(2)
+                .map(|t| Vec2::new(t[0], 1.0 - t[1]))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let colors: Vec<Rgb> = if m.vertex_color.len() == m.positions.len() {
+            m.vertex_color
+                .chunks_exact(3)
+                .map(|c| Rgb::new(c[0], c[1], c[2]))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        if !uvs.iter().all(|t| t.is_finite()) || !colors.iter().all(|c| c.is_finite()) {
+            return Err(format!(
+                "OBJ {}: model \"{}\" has a non-finite texture coordinate or vertex colour",
+                path.display(),
+                model.name
+            )
+            .into());
+        }
+        let map = match (&material, m.material_id.and_then(|i| mtls.get(i))) {
+            (Some(_), Some(mtl)) => mtl.diffuse_texture.clone(),
+            _ => None,
+        };
         out.meshes.push(Mesh {
             name: format!("{}#{}", path.display(), model.name),
             positions,
             indices,
             normals,
-            ..Mesh::default()
+            uvs,
+            colors,
         });
         out.materials.push(material);
+        out.diffuse_maps.push(map);
     }
     if out.meshes.iter().all(|m| m.indices.is_empty()) {
         return Err(format!("OBJ {} contains no triangles", path.display()).into());

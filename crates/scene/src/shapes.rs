@@ -23,13 +23,15 @@
 //! flip_normals = false              # true: the front side faces inwards (every shape has it)
 //! ```
 use crate::Mesh;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-/// A parallelogram as two triangles; front side = `u × v`.
+/// A parallelogram as two triangles; front side = `u × v`. UV (0, 0) at `corner`, (1, 0) at
+/// `corner + u`, (0, 1) at `corner + v` (Mitsuba's `rectangle` parameterisation).
 pub fn quad_mesh(corner: Vec3, u: Vec3, v: Vec3) -> Mesh {
     Mesh {
         positions: vec![corner, corner + u, corner + u + v, corner + v],
         indices: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y],
         ..Mesh::default()
     }
 }

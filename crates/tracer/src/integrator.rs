@@ -5,9 +5,9 @@
 //! number of path segments. 1 renders only directly visible emitters, 2 adds direct
 //! lighting, −1 is unlimited. Russian roulette starts once `rr_depth` segments have been
 //! traced, with survival probability min(max(throughput), 0.95).
-use crate::accel::RayScratch;
-use crate::bsdf::Bsdf;
-use crate::lights::{LightSet, luminance};
+use crate::emitter::luminance;
+use crate::geometry::RayScratch;
+use crate::path_state::{PathState, Vertex, VertexSamples};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
 use glam::Vec3A;
@@ -101,14 +101,14 @@ pub fn offset(p: Vec3A, n: Vec3A) -> Vec3A {
 /// Per-channel factor that turns a BSDF value into its grey, luminance-preserving version
 /// (estimators.md §2.2 b), guarded where a channel is nearly black.
 #[inline]
-fn achromatic_ratio(f: Vec3A) -> Vec3A {
+pub fn achromatic_ratio(f: Vec3A) -> Vec3A {
     let y = luminance(f);
     let r = |c: f32| (y / c.max(1e-8)).min(1e3);
     Vec3A::new(r(f.x), r(f.y), r(f.z))
 }
 
 #[inline]
-fn irradiance_ratio(f: Vec3A) -> Vec3A {
+pub fn irradiance_ratio(f: Vec3A) -> Vec3A {
     let r = |c: f32| if c > 1e-8 { 1.0 / c } else { 0.0 };
     Vec3A::new(r(f.x), r(f.y), r(f.z))
 }
@@ -127,7 +127,7 @@ pub fn visible(
     } else {
         f32::INFINITY
     };
-    scene.accel.unoccluded_with(scratch, from, wi, tmax)
+    scene.geometry.unoccluded_with(scratch, from, wi, tmax)
 }
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
@@ -135,33 +135,25 @@ pub fn visible(
 ///
 /// The first thing drawn from `s` is the first vertex's 2-D light sample: callers draw their
 /// direction from dimensions 0-1 of a chunk and leave `s` there, so that the two share it.
+///
+/// The loop only sequences the named steps of [`PathState`]; each step reads and advances
+/// the path's state, so a batched executor can run the same steps over many paths.
 pub fn trace(
     scene: &SceneData,
-    mut o: Vec3A,
-    mut d: Vec3A,
+    o: Vec3A,
+    d: Vec3A,
     from: Origin,
     s: &mut SampleStream,
     settings: PathSettings,
     aovs: bool,
 ) -> PathSample {
-    let lights: &LightSet = &scene.lights;
-    let mut scratch = scene.accel.scratch();
-    let mut out = PathSample::default();
-    let mut beta = Vec3A::ONE;
-    // Factors applied to contributions that pass through the first vertex (AOVs).
-    let mut ka = Vec3A::ZERO;
-    let mut ke = Vec3A::ZERO;
-    let mut prev = from;
-    let mut prev_p = o;
-    // Normal of the vertex `prev_p` is on (none at the start: a camera or the eye).
-    let mut prev_n: Option<Vec3A> = None;
-    let mut depth: u32 = 0;
+    let mut scratch = scene.geometry.scratch();
     // The first vertex's light sample comes from the dimensions right after the caller's
     // direction (the pixel position, the eye's cardioid direction), in the same 4-D Sobol chunk:
     // direct light at the first hit is then one jointly stratified 4-D integral over
     // (direction, light point) instead of two 2-D ones paired at random. Every later vertex
     // likewise draws its light sample together with the direction that leads to it.
-    let mut u_light = s.next_2d();
+    let mut path = PathState::new(o, d, from, s.next_2d(), aovs);
     let max_depth = if settings.max_depth < 0 {
         u32::MAX
     } else {
@@ -170,136 +162,23 @@ pub fn trace(
     loop {
         s.start_group();
         let Some(hit) = scene
-            .accel
-            .intersect_with(&mut scratch, o, d, f32::INFINITY)
+            .geometry
+            .intersect_with(&mut scratch, path.o, path.d, f32::INFINITY)
         else {
-            if let Some(env) = lights.env {
-                let w = match prev {
-                    Origin::Camera => 1.0,
-                    Origin::Sampled { pdf } => power_heuristic(pdf, lights.pdf_env(prev_p, prev_n)),
-                };
-                let c = beta * env * w;
-                out.l += c;
-                if depth > 0 {
-                    out.achromatic += c * ka;
-                    out.irradiance += c * ke;
-                }
-            }
+            path.escape(&scene.lights);
             break;
         };
-        let wo = -d;
-        let front = hit.ng.dot(wo) > 0.0;
-        if aovs && depth == 0 {
-            out.hit = true;
-            out.depth = hit.t;
-            out.normal = hit.ns;
-        }
-        // Emission (one-sided: front face only).
-        let emission = scene.emission[hit.info.material as usize];
-        if front && hit.info.light != u32::MAX {
-            let w = match prev {
-                Origin::Camera => 1.0,
-                Origin::Sampled { pdf } => {
-                    power_heuristic(pdf, lights.pdf_area(hit.info.light, prev_p, prev_n, hit.p))
-                }
-            };
-            let c = beta * emission * w;
-            out.l += c;
-            if depth == 0 {
-                out.emitter = true;
-            } else {
-                out.achromatic += c * ka;
-                out.irradiance += c * ke;
-            }
-        }
-        if depth + 1 >= max_depth {
+        let si = scene.geometry.interaction(path.o, path.d, &hit);
+        path.shade_hit(scene, &si);
+        if path.depth + 1 >= max_depth {
             break;
         }
-        // Shading frame on the viewer's side; every surface reflects on both sides.
-        let ng = if front { hit.ng } else { -hit.ng };
-        let ns = if hit.ns.dot(ng) < 0.0 {
-            -hit.ns
-        } else {
-            hit.ns
-        };
-        let frame = Frame::new(ns);
-        let wo_l = frame.to_local(wo);
-        let bsdf: &Bsdf = &scene.bsdfs[hit.info.material as usize];
-        let u_pick = s.next_1d();
-        let u_lobe = s.next_1d();
-        let u_rr = s.next_1d();
-        let _ = s.next_1d();
-        let u_bsdf = s.next_2d();
-        let u_light_next = s.next_2d();
-        let p = offset(hit.p, ng);
-
-        // Next-event estimation.
-        if !bsdf.is_delta()
-            && let Some(ls) = lights.sample(p, Some(ng), u_pick, u_light)
-            && ls.wi.dot(ng) > 0.0
-        {
-            let wi_l = frame.to_local(ls.wi);
-            let f = bsdf.eval(wo_l, wi_l);
-            if f.max_element() > 0.0 && visible(scene, &mut scratch, p, ls.wi, ls.dist) {
-                let w = if ls.delta {
-                    1.0
-                } else {
-                    power_heuristic(ls.pdf, bsdf.pdf(wo_l, wi_l))
-                };
-                let c = beta * f * ls.li * (wi_l.z * w / ls.pdf);
-                out.l += c;
-                if depth == 0 {
-                    out.achromatic += c * achromatic_ratio(f);
-                    out.irradiance += c * irradiance_ratio(f);
-                } else {
-                    out.achromatic += c * ka;
-                    out.irradiance += c * ke;
-                }
-            }
-        }
-
-        // Continue by sampling the BSDF.
-        let Some(bs) = bsdf.sample(wo_l, u_lobe, u_bsdf) else {
-            break;
-        };
-        let wi = frame.to_world(bs.wi);
-        if wi.dot(ng) <= 0.0 {
-            break; // below the geometric surface: shading-normal artefact, no light there
-        }
-        if depth == 0 {
-            out.albedo = bs.weight;
-            if bs.delta {
-                ka = achromatic_ratio(bs.weight);
-                ke = Vec3A::ZERO; // irradiance cannot be estimated through a delta lobe
-            } else {
-                ka = achromatic_ratio(bs.f);
-                ke = irradiance_ratio(bs.f);
-            }
-        }
-        beta *= bs.weight;
-        u_light = u_light_next;
-        prev = if bs.delta {
-            Origin::Camera
-        } else {
-            Origin::Sampled { pdf: bs.pdf }
-        };
-        // The actual ray origin and the normal NEE used, so MIS at the next emitter hit sees
-        // the same light-choice probability as NEE computed here.
-        prev_p = p;
-        prev_n = Some(ng);
-        o = p;
-        d = wi;
-        depth += 1;
-        if depth >= settings.rr_depth {
-            let q = beta.max_element().min(0.95);
-            if u_rr >= q {
-                break;
-            }
-            beta /= q;
-        }
-        if beta.max_element() <= 0.0 {
+        let u = VertexSamples::draw(s);
+        let v = Vertex::new(scene, &si, -path.d);
+        path.sample_light(scene, &mut scratch, &v, &u);
+        if !path.scatter(&v, &u) || !path.roulette(settings.rr_depth, u.rr) {
             break;
         }
     }
-    out
+    path.out
 }

@@ -1,5 +1,5 @@
 //! The TOML file as serde sees it: stage one of two-stage configuration (the raw shape of the
-//! file, every key known, locations kept with `Spanned`). `load.rs` validates it into [`Scene`].
+//! file, every key known, locations kept with `Spanned`). the sibling modules validate it into [`Scene`].
 //!
 //! Materials, shapes and lights are flat structs keyed by `type` rather than internally tagged
 //! enums, because serde buffers tagged enums and would drop the spans that error messages need.
@@ -16,9 +16,13 @@ pub struct SceneFile {
     pub camera: Option<Spanned<CameraDef>>,
     pub render: Option<RenderDef>,
     #[serde(default)]
+    pub textures: Vec<Spanned<TextureDef>>,
+    #[serde(default)]
     pub materials: Vec<Spanned<MaterialDef>>,
     #[serde(default)]
     pub shapes: Vec<Spanned<ShapeDef>>,
+    #[serde(default)]
+    pub instances: Vec<Spanned<InstanceDef>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightDef>>,
     pub environment: Option<Spanned<EnvironmentDef>>,
@@ -59,6 +63,33 @@ pub struct MaterialDef {
     pub k: Option<V3>,
     pub specular_reflectance: Option<V3>,
     pub ior: Option<Spanned<f32>>,
+    pub reflectance_texture: Option<Spanned<String>>,
+    pub roughness_texture: Option<Spanned<String>>,
+    pub specular_reflectance_texture: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureDef {
+    pub name: Spanned<String>,
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    pub file: Option<Spanned<String>>,
+    pub raw: Option<Spanned<bool>>,
+    pub filter: Option<Spanned<String>>,
+    pub wrap: Option<Spanned<String>>,
+    pub uv_scale: Option<Spanned<[f32; 2]>>,
+    pub uv_offset: Option<Spanned<[f32; 2]>>,
+    pub color0: Option<V3>,
+    pub color1: Option<V3>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstanceDef {
+    pub shape: Spanned<String>,
+    pub material: Option<Spanned<String>>,
+    pub transform: Option<Spanned<TransformDef>>,
 }
 
 #[derive(Deserialize)]
@@ -78,6 +109,10 @@ pub struct ShapeDef {
     pub subdivisions: Option<Spanned<i64>>,
     pub flip_normals: Option<bool>,
     pub transform: Option<Spanned<TransformDef>>,
+    /// Names the shape for `[[instances]]`.
+    pub name: Option<Spanned<String>>,
+    /// True: the shape is only placed by instances, not where it is defined.
+    pub template: Option<bool>,
 }
 
 #[derive(Deserialize)]

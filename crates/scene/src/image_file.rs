@@ -1,0 +1,129 @@
+//! Decoding bitmap files (PNG, JPEG, BMP, TGA, HDR, EXR) into linear texels, once per file.
+//!
+//! Mitsuba's rule (`raw = false`): integer formats (8- and 16-bit PNG, JPEG, BMP, TGA) hold
+//! sRGB-encoded values and are decoded to linear with the sRGB transfer function; float formats
+//! (HDR, EXR) are linear already. With `raw = true` values are taken as they are (integers
+//! divided by their maximum). Grey images are replicated into RGB; alpha is ignored.
+use crate::{Image, Rgb};
+use image::{DynamicImage, ImageReader};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The sRGB transfer function, inverted (IEC 61966-2-1).
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Decodes `path`; the message names the file and what is wrong with it.
+pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
+    if !path.is_file() {
+        return Err(format!(
+            "texture file {} does not exist or is not a file",
+            path.display()
+        ));
+    }
+    let reader = ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| format!("cannot read texture file {}: {e}", path.display()))?;
+    if reader.format().is_none() {
+        return Err(format!(
+            "texture file {}: unknown image format (expected PNG, JPEG, BMP, TGA, HDR or EXR)",
+            path.display()
+        ));
+    }
+    let img = reader
+        .decode()
+        .map_err(|e| format!("cannot decode texture file {}: {e}", path.display()))?;
+    let float = matches!(
+        img,
+        DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_)
+    );
+    let decode = |c: f32| if float || raw { c } else { srgb_to_linear(c) };
+    let rgb = img.to_rgb32f();
+    let texels: Vec<Rgb> = rgb
+        .pixels()
+        .map(|p| Rgb::new(decode(p[0]), decode(p[1]), decode(p[2])))
+        .collect();
+    if let Some(bad) = texels.iter().find(|t| crate::check_colour(**t).is_err()) {
+        return Err(format!(
+            "texture file {} has an unusable texel {bad:?} (NaN, infinite, negative or huge)",
+            path.display()
+        ));
+    }
+    Ok(Image {
+        width: rgb.width(),
+        height: rgb.height(),
+        texels,
+    })
+}
+
+/// Decoded images by (file, raw), so every texture naming a file shares one copy.
+#[derive(Default)]
+pub struct ImageCache(HashMap<(PathBuf, bool), Arc<Image>>);
+
+impl ImageCache {
+    pub fn get(&mut self, path: &Path, raw: bool) -> Result<Arc<Image>, String> {
+        let key = (path.to_path_buf(), raw);
+        if let Some(img) = self.0.get(&key) {
+            return Ok(img.clone());
+        }
+        let img = Arc::new(load_image(path, raw)?);
+        self.0.insert(key, img.clone());
+        Ok(img)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_decoding_matches_the_standard() {
+        assert_eq!(srgb_to_linear(0.0), 0.0);
+        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
+        // 0.5 encoded is 0.2140 linear; the linear segment below 0.04045.
+        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-5);
+        assert!((srgb_to_linear(0.04) - 0.04 / 12.92).abs() < 1e-7);
+    }
+
+    #[test]
+    fn png_is_decoded_from_srgb_unless_raw() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.png");
+        let mut img = image::RgbImage::new(2, 1);
+        img.put_pixel(0, 0, image::Rgb([255, 128, 0]));
+        img.put_pixel(1, 0, image::Rgb([0, 0, 255]));
+        img.save(&path).unwrap();
+        let lin = load_image(&path, false).unwrap();
+        assert_eq!((lin.width, lin.height), (2, 1));
+        assert!((lin.texels[0].x - 1.0).abs() < 1e-6);
+        assert!((lin.texels[0].y - srgb_to_linear(128.0 / 255.0)).abs() < 1e-6);
+        let raw = load_image(&path, true).unwrap();
+        assert!((raw.texels[0].y - 128.0 / 255.0).abs() < 1e-6);
+        assert_eq!(raw.texels[1], Rgb::new(0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn bad_files_are_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let missing = load_image(&dir.path().join("none.png"), false).unwrap_err();
+        assert!(missing.contains("none.png") && missing.contains("does not exist"));
+        let junk = dir.path().join("junk.png");
+        std::fs::write(&junk, b"this is not an image").unwrap();
+        let e = load_image(&junk, false).unwrap_err();
+        assert!(e.contains("junk.png"), "{e}");
+        let corrupt = dir.path().join("cut.png");
+        let mut png = Vec::new();
+        image::RgbImage::new(4, 4)
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        std::fs::write(&corrupt, &png[..png.len() / 2]).unwrap();
+        let e = load_image(&corrupt, false).unwrap_err();
+        assert!(e.contains("cut.png") && e.contains("decode"), "{e}");
+    }
+}

@@ -1,0 +1,206 @@
+//! `[[materials]]`: BSDF type, its parameters and the emission.
+use super::Ctx;
+use super::format::MaterialDef;
+use crate::{Bsdf, Material, Param, Rgb};
+
+impl Ctx<'_> {
+    pub(super) fn material(&mut self, m: &MaterialDef) -> Material {
+        let name = m.name.get_ref().clone();
+        let kind = m.kind.get_ref().as_str();
+        let emission = m
+            .emission
+            .as_ref()
+            .map_or(Rgb::ZERO, |e| self.colour(e, "emission"));
+        let allowed: &[&str] = match kind {
+            "diffuse" => &["reflectance", "reflectance_texture"],
+            "conductor" => &[
+                "roughness",
+                "roughness_texture",
+                "eta",
+                "k",
+                "specular_reflectance",
+                "specular_reflectance_texture",
+            ],
+            "plastic" => &[
+                "reflectance",
+                "reflectance_texture",
+                "roughness",
+                "roughness_texture",
+                "ior",
+            ],
+            other => {
+                self.error(
+                    m.kind.span().start,
+                    format!(
+                        "unknown material type \"{other}\" (expected diffuse, conductor or plastic)"
+                    ),
+                );
+                return Material::error();
+            }
+        };
+        let at = |t: &Option<toml::Spanned<String>>| t.as_ref().map(|v| v.span().start);
+        let present: [(&str, Option<usize>); 9] = [
+            ("reflectance_texture", at(&m.reflectance_texture)),
+            ("roughness_texture", at(&m.roughness_texture)),
+            (
+                "specular_reflectance_texture",
+                at(&m.specular_reflectance_texture),
+            ),
+            (
+                "reflectance",
+                m.reflectance.as_ref().map(|v| v.span().start),
+            ),
+            ("roughness", m.roughness.as_ref().map(|v| v.span().start)),
+            ("eta", m.eta.as_ref().map(|v| v.span().start)),
+            ("k", m.k.as_ref().map(|v| v.span().start)),
+            (
+                "specular_reflectance",
+                m.specular_reflectance.as_ref().map(|v| v.span().start),
+            ),
+            ("ior", m.ior.as_ref().map(|v| v.span().start)),
+        ];
+        for (key, at) in present {
+            if let Some(at) = at
+                && !allowed.contains(&key)
+            {
+                self.error(
+                    at,
+                    format!("material \"{name}\": key `{key}` does not apply to type \"{kind}\""),
+                );
+            }
+        }
+        let reflectance = |cx: &mut Self| -> Rgb {
+            match &m.reflectance {
+                Some(r) => {
+                    let c = cx.colour(r, "reflectance");
+                    if c.max_element() > 1.0 {
+                        cx.error(
+                            r.span().start,
+                            format!("reflectance {c:?} exceeds 1: the surface would create energy"),
+                        );
+                    }
+                    c
+                }
+                None => Rgb::splat(0.5),
+            }
+        };
+        let roughness = |cx: &mut Self| -> f32 {
+            match &m.roughness {
+                Some(r) => {
+                    let a = *r.get_ref();
+                    if !(a.is_finite() && (0.0..=1.0).contains(&a)) {
+                        cx.error(r.span().start, format!("roughness {a} must be in [0, 1]"));
+                        return 0.1;
+                    }
+                    a
+                }
+                None => 0.1,
+            }
+        };
+        let bsdf = match kind {
+            "diffuse" => Bsdf::Diffuse {
+                reflectance: self.param(
+                    &name,
+                    &m.reflectance_texture,
+                    m.reflectance.is_some(),
+                    reflectance,
+                ),
+            },
+            "conductor" => {
+                let alpha = self.param(
+                    &name,
+                    &m.roughness_texture,
+                    m.roughness.is_some(),
+                    roughness,
+                );
+                // Default: gold, Mitsuba's `Au` at the Rec.709 primaries.
+                let eta = m
+                    .eta
+                    .as_ref()
+                    .map_or(Rgb::new(0.143, 0.374, 1.442), |v| self.colour(v, "eta"));
+                let k =
+                    m.k.as_ref()
+                        .map_or(Rgb::new(3.983, 2.386, 1.603), |v| self.colour(v, "k"));
+                let specular_reflectance = self.param(
+                    &name,
+                    &m.specular_reflectance_texture,
+                    m.specular_reflectance.is_some(),
+                    |cx| {
+                        m.specular_reflectance
+                            .as_ref()
+                            .map_or(Rgb::ONE, |v| cx.colour(v, "specular_reflectance"))
+                    },
+                );
+                Bsdf::Conductor {
+                    alpha,
+                    eta,
+                    k,
+                    specular_reflectance,
+                }
+            }
+            _ => {
+                let ior = m.ior.as_ref().map_or(1.5, |v| {
+                    let x = *v.get_ref();
+                    if !(x.is_finite() && x > 1.0 && x < 4.0) {
+                        self.error(v.span().start, format!("ior {x} must be in (1, 4)"));
+                        return 1.5;
+                    }
+                    x
+                });
+                let reflectance = self.param(
+                    &name,
+                    &m.reflectance_texture,
+                    m.reflectance.is_some(),
+                    reflectance,
+                );
+                let alpha = self.param(&name, &m.roughness_texture, m.roughness.is_some(), |cx| {
+                    roughness(cx).max(0.01)
+                });
+                Bsdf::Plastic {
+                    reflectance,
+                    alpha,
+                    ior,
+                }
+            }
+        };
+        Material {
+            name,
+            bsdf,
+            emission,
+        }
+    }
+
+    /// A parameter given either as a constant (`constant` reads it) or by `texture` name; both
+    /// at once, or an unknown texture, is an error.
+    fn param<T>(
+        &mut self,
+        material: &str,
+        texture: &Option<toml::Spanned<String>>,
+        constant_given: bool,
+        constant: impl FnOnce(&mut Self) -> T,
+    ) -> Param<T> {
+        let Some(t) = texture else {
+            return Param::Const(constant(self));
+        };
+        if constant_given {
+            self.error(
+                t.span().start,
+                format!("material \"{material}\": give a constant or a texture, not both"),
+            );
+        }
+        match self.textures.get(t.get_ref()) {
+            Some(Some(id)) => Param::Texture(*id),
+            Some(None) => Param::Const(constant(self)),
+            None => {
+                self.error(
+                    t.span().start,
+                    format!(
+                        "material \"{material}\": unknown texture \"{}\" (textures are defined in [[textures]])",
+                        t.get_ref()
+                    ),
+                );
+                Param::Const(constant(self))
+            }
+        }
+    }
+}

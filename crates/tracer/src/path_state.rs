@@ -1,0 +1,279 @@
+//! One path's state between the integrator's named steps, and the steps themselves:
+//! [`PathState::escape`] (the ray left the scene), [`PathState::shade_hit`] (emission at a
+//! hit), [`PathState::sample_light`] (next-event estimation), [`PathState::scatter`] (continue
+//! along a BSDF sample, reflected or transmitted) and [`PathState::roulette`].
+//!
+//! Everything a step needs from earlier steps lives in [`PathState`]; everything it needs
+//! about the current surface lives in [`Vertex`]; its random numbers come in
+//! [`VertexSamples`]. A batched or wavefront executor can therefore run one step over many
+//! paths at a time and get the same result as [`crate::trace`].
+use crate::bsdf::Bsdf;
+use crate::geometry::RayScratch;
+use crate::integrator::{
+    Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic, visible,
+};
+use crate::interaction::SurfaceInteraction;
+use crate::lights::LightSet;
+use crate::sampler::SampleStream;
+use crate::scene_data::SceneData;
+use glam::Vec3A;
+
+/// The state of a path between steps.
+pub struct PathState {
+    /// The ray to trace next.
+    pub o: Vec3A,
+    pub d: Vec3A,
+    /// Throughput: the product of BSDF weights so far.
+    pub beta: Vec3A,
+    /// Segments traced so far.
+    pub depth: u32,
+    /// How the current ray was chosen, for MIS at the emitter it reaches.
+    prev: Origin,
+    /// Where the current ray starts and the normal light choice used there (none at the
+    /// camera or the eye, or where the BSDF transmits).
+    prev_p: Vec3A,
+    prev_n: Option<Vec3A>,
+    /// The 2-D light sample of the next vertex (drawn with the direction that leads to it).
+    u_light: [f32; 2],
+    /// Factors applied to contributions that pass through the first vertex (AOVs).
+    ka: Vec3A,
+    ke: Vec3A,
+    aovs: bool,
+    pub out: PathSample,
+}
+
+/// The current surface, as the steps after [`PathState::shade_hit`] see it.
+pub struct Vertex {
+    /// Geometric normal on the viewer's side.
+    ng: Vec3A,
+    frame: Frame,
+    wo_l: Vec3A,
+    bsdf: Bsdf,
+    /// Ray origins just off the surface on the viewer's side and behind it.
+    p_front: Vec3A,
+    p_back: Vec3A,
+}
+
+/// The random numbers of one vertex, in the sample stream's fixed order.
+pub struct VertexSamples {
+    pick: f32,
+    lobe: f32,
+    pub rr: f32,
+    bsdf: [f32; 2],
+    light_next: [f32; 2],
+}
+
+impl VertexSamples {
+    pub fn draw(s: &mut SampleStream) -> VertexSamples {
+        let pick = s.next_1d();
+        let lobe = s.next_1d();
+        let rr = s.next_1d();
+        let _ = s.next_1d();
+        let bsdf = s.next_2d();
+        let light_next = s.next_2d();
+        VertexSamples {
+            pick,
+            lobe,
+            rr,
+            bsdf,
+            light_next,
+        }
+    }
+}
+
+impl Vertex {
+    /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there.
+    pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A) -> Vertex {
+        // Shading frame on the viewer's side; every surface reflects on both sides.
+        let ng = if si.ng.dot(wo) > 0.0 { si.ng } else { -si.ng };
+        let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
+        let frame = Frame::new(ns);
+        Vertex {
+            ng,
+            frame,
+            wo_l: frame.to_local(wo),
+            bsdf: scene.materials.bsdf(si),
+            p_front: offset(si.p, ng),
+            p_back: offset(si.p, -ng),
+        }
+    }
+
+    /// The ray origin for leaving along `wi`, and whether that side is the viewer's.
+    fn origin_towards(&self, wi: Vec3A) -> (Vec3A, bool) {
+        if wi.dot(self.ng) > 0.0 {
+            (self.p_front, true)
+        } else {
+            (self.p_back, false)
+        }
+    }
+}
+
+impl PathState {
+    pub fn new(o: Vec3A, d: Vec3A, from: Origin, u_light: [f32; 2], aovs: bool) -> PathState {
+        PathState {
+            o,
+            d,
+            beta: Vec3A::ONE,
+            depth: 0,
+            prev: from,
+            prev_p: o,
+            prev_n: None,
+            u_light,
+            ka: Vec3A::ZERO,
+            ke: Vec3A::ZERO,
+            aovs,
+            out: PathSample::default(),
+        }
+    }
+
+    /// Adds radiance `c` that reached the camera through the current vertex.
+    #[inline]
+    fn add_through_later_vertex(&mut self, c: Vec3A) {
+        self.out.l += c;
+        self.out.achromatic += c * self.ka;
+        self.out.irradiance += c * self.ke;
+    }
+
+    /// The ray left the scene: the environment, weighted against light sampling.
+    pub fn escape(&mut self, lights: &LightSet) {
+        let Some(env) = lights.env else { return };
+        let w = match self.prev {
+            Origin::Camera => 1.0,
+            Origin::Sampled { pdf } => {
+                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n))
+            }
+        };
+        let c = self.beta * env * w;
+        if self.depth > 0 {
+            self.add_through_later_vertex(c);
+        } else {
+            self.out.l += c;
+        }
+    }
+
+    /// The ray hit `si`: first-hit AOVs and the emission seen (front side only), weighted
+    /// against light sampling.
+    pub fn shade_hit(&mut self, scene: &SceneData, si: &SurfaceInteraction) {
+        if self.aovs && self.depth == 0 {
+            self.out.hit = true;
+            self.out.depth = si.t;
+            self.out.normal = si.ns;
+        }
+        if si.light == u32::MAX || si.ng.dot(self.d) >= 0.0 {
+            return;
+        }
+        let lights = &scene.lights;
+        let w = match self.prev {
+            Origin::Camera => 1.0,
+            Origin::Sampled { pdf } => power_heuristic(
+                pdf,
+                lights.pdf_area(si.light, self.prev_p, self.prev_n, si.p),
+            ),
+        };
+        let c = self.beta * scene.materials.emission(si.material) * w;
+        if self.depth == 0 {
+            self.out.l += c;
+            self.out.emitter = true;
+        } else {
+            self.add_through_later_vertex(c);
+        }
+    }
+
+    /// Next-event estimation at `v`: one light sample, MIS-weighted against BSDF sampling.
+    pub fn sample_light(
+        &mut self,
+        scene: &SceneData,
+        scratch: &mut RayScratch,
+        v: &Vertex,
+        u: &VertexSamples,
+    ) {
+        if v.bsdf.is_delta() {
+            return;
+        }
+        let transmits = v.bsdf.has_transmission();
+        // A BSDF that only reflects sees light on the viewer's side only, which lets the
+        // light choice use the normal.
+        let (p, n) = if transmits {
+            (v.p_front, None)
+        } else {
+            (v.p_front, Some(v.ng))
+        };
+        let Some(ls) = scene.lights.sample(p, n, u.pick, self.u_light) else {
+            return;
+        };
+        let (from, front) = v.origin_towards(ls.wi);
+        if !front && !transmits {
+            return;
+        }
+        let wi_l = v.frame.to_local(ls.wi);
+        let f = v.bsdf.eval(v.wo_l, wi_l);
+        if f.max_element() <= 0.0 || !visible(scene, scratch, from, ls.wi, ls.dist) {
+            return;
+        }
+        let w = if ls.delta {
+            1.0
+        } else {
+            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l))
+        };
+        let c = self.beta * f * ls.li * (wi_l.z.abs() * w / ls.pdf);
+        if self.depth == 0 {
+            self.out.l += c;
+            self.out.achromatic += c * achromatic_ratio(f);
+            self.out.irradiance += c * irradiance_ratio(f);
+        } else {
+            self.add_through_later_vertex(c);
+        }
+    }
+
+    /// Continues the path along a BSDF sample at `v`, reflected or transmitted; false when
+    /// the path ends (no sample, or one on the wrong side of the geometric surface).
+    pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
+        let Some(bs) = v.bsdf.sample(v.wo_l, u.lobe, u.bsdf) else {
+            return false;
+        };
+        let wi = v.frame.to_world(bs.wi);
+        let (from, front) = v.origin_towards(wi);
+        // The sample's side in the shading frame must be its side of the geometric surface:
+        // otherwise it is a shading-normal artefact and no light arrives there.
+        if front != (bs.wi.z > 0.0) || wi.dot(v.ng) == 0.0 {
+            return false;
+        }
+        if self.depth == 0 {
+            self.out.albedo = bs.weight;
+            if bs.delta {
+                self.ka = achromatic_ratio(bs.weight);
+                self.ke = Vec3A::ZERO; // irradiance cannot be estimated through a delta lobe
+            } else {
+                self.ka = achromatic_ratio(bs.f);
+                self.ke = irradiance_ratio(bs.f);
+            }
+        }
+        self.beta *= bs.weight;
+        self.u_light = u.light_next;
+        self.prev = if bs.delta {
+            Origin::Camera
+        } else {
+            Origin::Sampled { pdf: bs.pdf }
+        };
+        // The actual ray origin and the normal NEE used, so MIS at the next emitter hit sees
+        // the same light-choice probability as NEE computed here.
+        self.prev_p = from;
+        self.prev_n = (!v.bsdf.has_transmission()).then_some(v.ng);
+        self.o = from;
+        self.d = wi;
+        self.depth += 1;
+        true
+    }
+
+    /// Russian roulette once `rr_depth` segments are traced; false when the path ends.
+    pub fn roulette(&mut self, rr_depth: u32, u_rr: f32) -> bool {
+        if self.depth >= rr_depth {
+            let q = self.beta.max_element().min(0.95);
+            if u_rr >= q {
+                return false;
+            }
+            self.beta /= q;
+        }
+        self.beta.max_element() > 0.0
+    }
+}
