@@ -1,0 +1,180 @@
+//! Stage two: interpret the object tree (`xml.rs`) as eyeadapt's [`Scene`].
+//!
+//! Every plugin reads its parameters through the typed accessors of `params.rs`, which mark them as
+//! used; [`Builder::finish`] then reports whatever was left, the way Mitsuba reports
+//! "unreferenced properties". Unsupported plugin types are reported once, at their element.
+use super::xml::Obj;
+use crate::diagnostic::{Diagnostic, SourceMap};
+use crate::{Light, MaterialId, Scene};
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+mod bsdf;
+mod emitter;
+mod params;
+mod sensor;
+mod shape;
+
+use bsdf::BuiltBsdf;
+pub use sensor::vertical_fov;
+
+pub(crate) struct Builder<'t> {
+    map: &'t SourceMap<'t>,
+    pub diags: Vec<Diagnostic>,
+    dir: PathBuf,
+    ids: HashMap<&'t str, &'t Obj>,
+    /// Top-level BSDFs by id (`None`: failed, or being built).
+    bsdfs: HashMap<String, Option<BuiltBsdf>>,
+    /// Non-emissive material of each BSDF id, shared by every shape that references it.
+    shared: HashMap<String, MaterialId>,
+    default_material: Option<MaterialId>,
+    pub scene: Scene,
+}
+
+impl<'t> Builder<'t> {
+    pub(crate) fn new(map: &'t SourceMap<'t>) -> Self {
+        Builder {
+            map,
+            diags: Vec::new(),
+            dir: map
+                .file
+                .parent()
+                .unwrap_or(std::path::Path::new("."))
+                .to_path_buf(),
+            ids: HashMap::new(),
+            bsdfs: HashMap::new(),
+            shared: HashMap::new(),
+            default_material: None,
+            scene: Scene {
+                source: map.file.to_path_buf(),
+                ..Scene::default()
+            },
+        }
+    }
+
+    pub(super) fn error(&mut self, at: usize, msg: impl Into<String>) {
+        let d = self.map.error(at, msg);
+        self.diags.push(d);
+    }
+
+    pub(super) fn warning(&mut self, at: usize, msg: impl Into<String>) {
+        let d = self.map.warning(at, msg);
+        self.diags.push(d);
+    }
+
+    pub(super) fn unsupported(&mut self, o: &Obj, supported: &str) {
+        self.error(
+            o.at,
+            format!(
+                "unsupported {}: eyeadapt supports {} plugins {supported}",
+                o.describe(),
+                o.tag
+            ),
+        );
+    }
+
+    // ----- the scene ----------------------------------------------------------------------
+
+    pub(crate) fn build(&mut self, objects: &'t [Obj]) {
+        for o in objects {
+            if let Some(id) = &o.id
+                && self.ids.insert(id.as_str(), o).is_some()
+            {
+                self.error(o.at, format!("id \"{id}\" is used twice"));
+            }
+        }
+        let mut sensor_seen = false;
+        let mut integrator_seen = false;
+        for (index, o) in objects.iter().enumerate() {
+            match o.tag.as_str() {
+                "bsdf" => match &o.id {
+                    Some(id) => {
+                        self.bsdf_by_id(id, o.at);
+                    }
+                    None => {
+                        self.bsdf(o);
+                    }
+                },
+                "texture" => self.texture(o),
+                "shape" => {
+                    let before = self.scene.meshes.len();
+                    self.shape(o, index);
+                    let ok = self.scene.meshes[before..]
+                        .iter()
+                        .all(|m| m.positions.iter().all(|p| p.is_finite()));
+                    self.single_precision(ok, o);
+                }
+                "emitter" => {
+                    let before = self.scene.lights.len();
+                    self.emitter(o);
+                    let ok = self.scene.lights[before..].iter().all(|l| match l {
+                        Light::Point { position, .. } => position.is_finite(),
+                        Light::Spot {
+                            position,
+                            direction,
+                            ..
+                        } => position.is_finite() && direction.is_finite(),
+                    });
+                    self.single_precision(ok, o);
+                }
+                "sensor" => {
+                    if sensor_seen {
+                        self.warning(
+                            o.at,
+                            format!("{} ignored: eyeadapt renders the first sensor only (as Mitsuba does by default)", o.describe()),
+                        );
+                    } else {
+                        sensor_seen = true;
+                        self.sensor(o);
+                        let ok = self.scene.camera.as_ref().is_none_or(|c| {
+                            c.position.is_finite() && c.look_at.is_finite() && c.up.is_finite()
+                        });
+                        self.single_precision(ok, o);
+                    }
+                }
+                "integrator" => {
+                    if integrator_seen {
+                        self.error(o.at, "a scene can have only one <integrator>");
+                    } else {
+                        integrator_seen = true;
+                        self.integrator(o);
+                    }
+                }
+                "medium" | "phase" | "volume" | "spectrum" => self.error(
+                    o.at,
+                    format!(
+                        "unsupported {}: eyeadapt has no participating media or spectral plugins",
+                        o.describe()
+                    ),
+                ),
+                _ => self.error(
+                    o.at,
+                    format!(
+                        "{} at the top level: it belongs inside a <sensor>",
+                        o.describe()
+                    ),
+                ),
+            }
+        }
+        self.check_lights();
+    }
+
+    pub(super) fn check_lights(&mut self) {
+        let s = &self.scene;
+        let emitters = s
+            .meshes
+            .iter()
+            .any(|m| s.material(m.material).is_emissive());
+        if s.meshes.is_empty() && s.lights.is_empty() && s.environment.is_none() {
+            self.error(
+                0,
+                "the scene is empty: it has no shapes, lights or environment",
+            );
+        } else if !emitters
+            && s.lights.is_empty()
+            && s.environment.is_none_or(|e| e.max_element() <= 0.0)
+        {
+            self.warning(0, "the scene has no light source (no area, point, spot or constant emitter): it will render black");
+        }
+    }
+}

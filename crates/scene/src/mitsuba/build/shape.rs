@@ -1,0 +1,247 @@
+//! Shape plugins: obj, ply and the built-in rectangle, cube and sphere, with their BSDF and
+//! area emitter.
+use super::Builder;
+use super::BuiltBsdf;
+use crate::mitsuba::xml::{ChildKind, Obj};
+use crate::{Bsdf, Material, MaterialId, Mesh, Rgb, box_mesh, obj, quad_mesh, shapes, sphere_mesh};
+use glam::{DMat3, DMat4, DVec3, Vec3};
+
+/// Icosphere level used for `sphere` shapes (5120 triangles, area 0.3 % under 4πr²).
+const SPHERE_SUBDIVISIONS: u32 = 4;
+
+const SHAPES: &str = "obj, ply, rectangle, cube and sphere";
+
+impl<'t> Builder<'t> {
+    pub(super) fn shape(&mut self, o: &'t Obj, index: usize) {
+        let kind = o.kind.as_str();
+        if !matches!(kind, "obj" | "ply" | "rectangle" | "cube" | "sphere") {
+            self.unsupported(o, SHAPES);
+            return;
+        }
+        let to_world = self.transform(o, "to_world").unwrap_or(DMat4::IDENTITY);
+        let flip_normals = self.boolean(o, "flip_normals").unwrap_or(false);
+        let face_normals = if kind == "sphere" {
+            false
+        } else {
+            self.boolean(o, "face_normals").unwrap_or(false)
+        };
+        let label = format!(
+            "shape[{index}] ({kind}, line {})",
+            self.map.line_col(o.at).0
+        );
+        let mut meshes: Vec<Mesh> = match kind {
+            "obj" | "ply" => {
+                self.boolean(o, "flip_tex_coords");
+                let Some((file, at)) = self.string(o, "filename") else {
+                    self.error(
+                        o.at,
+                        format!("{} needs a <string name=\"filename\">", o.describe()),
+                    );
+                    self.finish(o);
+                    return;
+                };
+                let path = self.dir.join(file);
+                let loaded = if kind == "obj" {
+                    obj::load_obj(&path, Some(MaterialId(0))).map(|l| l.meshes)
+                } else {
+                    crate::mitsuba::ply::load_ply(&path).map(|p| {
+                        vec![Mesh {
+                            name: path.display().to_string(),
+                            positions: p.positions,
+                            normals: p.normals,
+                            indices: p.indices,
+                            material: None,
+                        }]
+                    })
+                };
+                match loaded {
+                    Ok(m) => m,
+                    Err(e) => {
+                        self.error(at, e);
+                        Vec::new()
+                    }
+                }
+            }
+            "rectangle" => vec![quad_mesh(
+                Vec3::new(-1.0, -1.0, 0.0),
+                Vec3::new(2.0, 0.0, 0.0),
+                Vec3::new(0.0, 2.0, 0.0),
+            )],
+            "cube" => vec![box_mesh(Vec3::splat(-1.0), Vec3::splat(1.0))],
+            _ => {
+                let center = self.point(o, "center").unwrap_or(DVec3::ZERO);
+                let radius = match self.float(o, "radius") {
+                    Some(r) if r > 0.0 => r,
+                    Some(r) => {
+                        let at = self.prop(o, "radius").map_or(o.at, |p| p.at);
+                        self.error(at, format!("{}: radius {r} must be > 0", o.describe()));
+                        1.0
+                    }
+                    None => 1.0,
+                };
+                vec![sphere_mesh(
+                    center.as_vec3(),
+                    radius as f32,
+                    SPHERE_SUBDIVISIONS,
+                )]
+            }
+        };
+        let bsdf = self.shape_bsdf(o);
+        let emission = self.shape_emission(o);
+        self.finish(o);
+
+        let material = match (bsdf, emission) {
+            (Err(()), _) => None,
+            (Ok(b), Some(emission)) => {
+                let (bsdf, name) = match b {
+                    Some(b) => (b.bsdf, b.name),
+                    None => (
+                        Bsdf::Diffuse {
+                            reflectance: Rgb::splat(0.5),
+                        },
+                        "default diffuse".to_string(),
+                    ),
+                };
+                Some(self.scene.add_material(Material {
+                    name: format!("{name} + area emitter of {label}"),
+                    bsdf,
+                    emission,
+                }))
+            }
+            (Ok(Some(b)), None) => match self.shared.get(&b.name) {
+                Some(id) => Some(*id),
+                None => {
+                    let id = self.scene.add_material(Material {
+                        name: b.name.clone(),
+                        bsdf: b.bsdf,
+                        emission: Rgb::ZERO,
+                    });
+                    self.shared.insert(b.name, id);
+                    Some(id)
+                }
+            },
+            (Ok(None), None) => Some(*self.default_material.get_or_insert_with(|| {
+                self.scene.add_material(Material::diffuse(
+                    "default (Mitsuba's diffuse 0.5)",
+                    Rgb::splat(0.5),
+                ))
+            })),
+        };
+
+        let m = to_world.as_mat4();
+        let normal_matrix = DMat3::from_mat4(to_world).inverse().transpose().as_mat3();
+        let mirrored = DMat3::from_mat4(to_world).determinant() < 0.0;
+        for mesh in &mut meshes {
+            mesh.name = if mesh.name.is_empty() {
+                label.clone()
+            } else {
+                format!("{label} {}", mesh.name)
+            };
+            mesh.material = material;
+            for p in &mut mesh.positions {
+                *p = m.transform_point3(*p);
+            }
+            // Mitsuba keeps the winding under a mirroring transform, so the geometric normal
+            // (and with it the emitting side) flips; so does its analytic sphere's normal.
+            let flip_shading = mirrored && kind == "sphere";
+            for n in &mut mesh.normals {
+                *n = (normal_matrix * *n).normalize_or_zero();
+                if flip_shading {
+                    *n = -*n;
+                }
+            }
+            if face_normals {
+                mesh.normals.clear();
+            } else if mesh.normals.is_empty() && matches!(kind, "obj" | "ply") {
+                mesh.normals = smooth_normals(mesh);
+            }
+            if flip_normals {
+                shapes::flip(mesh);
+            }
+        }
+        self.scene.meshes.extend(meshes);
+    }
+
+    /// The shape's BSDF: `Ok(None)` for none (Mitsuba's default diffuse), `Err` on errors.
+    pub(super) fn shape_bsdf(&mut self, o: &'t Obj) -> Result<Option<BuiltBsdf>, ()> {
+        let mut found: Option<Result<BuiltBsdf, ()>> = None;
+        for c in &o.children {
+            let b = match &c.kind {
+                ChildKind::Obj(b) if b.tag == "bsdf" => self.bsdf(b),
+                ChildKind::Ref(id) => match self.ids.get(id.as_str()) {
+                    Some(t) if t.tag == "bsdf" => self.bsdf_by_id(id, c.at),
+                    Some(_) => continue, // reported by `finish` as unexpected
+                    None => {
+                        c.used.set(true);
+                        self.resolve(id, c.at);
+                        None
+                    }
+                },
+                ChildKind::Obj(_) => continue,
+            };
+            c.used.set(true);
+            if found.is_some() {
+                self.error(c.at, format!("{} has more than one BSDF", o.describe()));
+                return Err(());
+            }
+            found = Some(b.ok_or(()));
+        }
+        found.transpose()
+    }
+
+    /// The radiance of a nested `area` emitter.
+    pub(super) fn shape_emission(&mut self, o: &'t Obj) -> Option<Rgb> {
+        let mut out = None;
+        for c in &o.children {
+            let ChildKind::Obj(e) = &c.kind else { continue };
+            if e.tag != "emitter" {
+                continue;
+            }
+            c.used.set(true);
+            if e.kind != "area" {
+                self.error(
+                    e.at,
+                    format!(
+                        "unsupported {} inside a shape: only area emitters attach to shapes",
+                        e.describe()
+                    ),
+                );
+                continue;
+            }
+            let radiance = self.colour(e, "radiance").unwrap_or(Rgb::ONE);
+            self.float(e, "sampling_weight");
+            self.finish(e);
+            if out.is_some() {
+                self.error(
+                    e.at,
+                    format!("{} has more than one area emitter", o.describe()),
+                );
+            }
+            out = Some(radiance);
+        }
+        out
+    }
+}
+
+/// Angle-weighted vertex normals, what Mitsuba computes for meshes without normals (unless
+/// `face_normals` is set).
+fn smooth_normals(mesh: &Mesh) -> Vec<Vec3> {
+    let mut acc = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in &mesh.indices {
+        let p = t.map(|i| mesh.positions[i as usize].as_dvec3());
+        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        if n.length() == 0.0 {
+            continue;
+        }
+        let n = n.normalize();
+        for k in 0..3 {
+            let a = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
+            let b = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
+            let angle = a.dot(b).clamp(-1.0, 1.0).acos();
+            acc[t[k] as usize] += n * angle;
+        }
+    }
+    acc.iter()
+        .map(|n| n.normalize_or_zero().as_vec3())
+        .collect()
+}
