@@ -42,6 +42,14 @@ pub(crate) struct BuiltBsdf {
 
 impl<'t> Builder<'t> {
     pub(super) fn bsdf_by_id(&mut self, id: &str, at: usize) -> Option<BuiltBsdf> {
+        if let Some(i) = self.building.iter().position(|b| b == id) {
+            let chain = self.building[i..].join(" -> ");
+            self.error(
+                at,
+                format!("<ref id=\"{id}\">: circular reference {chain} -> {id}"),
+            );
+            return None;
+        }
         if let Some(b) = self.bsdfs.get(id) {
             return b.clone();
         }
@@ -55,17 +63,27 @@ impl<'t> Builder<'t> {
             }
             return None;
         }
-        self.bsdfs.insert(id.to_string(), None);
         let b = self.bsdf(o);
         self.bsdfs.insert(id.to_string(), b.clone());
         b
     }
 
+    /// Builds `o`; while it is being built its id (if any) is on [`Builder::building`].
     pub(super) fn bsdf(&mut self, o: &'t Obj) -> Option<BuiltBsdf> {
-        let name = o
-            .id
-            .clone()
-            .unwrap_or_else(|| format!("{} at line {}", o.describe(), self.map.line_col(o.at).0));
+        if let Some(id) = &o.id {
+            self.building.push(id.clone());
+        }
+        let b = self.bsdf_plugin(o);
+        if o.id.is_some() {
+            self.building.pop();
+        }
+        b
+    }
+
+    fn bsdf_plugin(&mut self, o: &'t Obj) -> Option<BuiltBsdf> {
+        let name =
+            o.id.clone()
+                .unwrap_or_else(|| format!("{} at line {}", o.describe(), self.sources.line(o.at)));
         let bsdf = match o.kind.as_str() {
             "twosided" => return self.twosided(o),
             "diffuse" => {

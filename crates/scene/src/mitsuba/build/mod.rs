@@ -3,11 +3,11 @@
 //! Every plugin reads its parameters through the typed accessors of `params.rs`, which mark them as
 //! used; [`Builder::finish`] then reports whatever was left, the way Mitsuba reports
 //! "unreferenced properties". Unsupported plugin types are reported once, at their element.
-use super::xml::Obj;
-use crate::diagnostic::{Diagnostic, SourceMap};
+use super::source::Sources;
+use super::xml::{ChildKind, Doc, Obj};
+use crate::diagnostic::{Diagnostic, Severity};
 use crate::{Light, MaterialId, Scene};
-use std::collections::HashMap;
-use std::path::PathBuf;
+use std::collections::{HashMap, HashSet};
 
 mod bsdf;
 mod emitter;
@@ -19,12 +19,16 @@ use bsdf::BuiltBsdf;
 pub use sensor::vertical_fov;
 
 pub(crate) struct Builder<'t> {
-    map: &'t SourceMap<'t>,
+    sources: &'t Sources,
     pub diags: Vec<Diagnostic>,
-    dir: PathBuf,
+    /// Every object with an id, nested ones included, and the aliases.
     ids: HashMap<&'t str, &'t Obj>,
-    /// Top-level BSDFs by id (`None`: failed, or being built).
+    /// BSDFs by id (`None`: failed).
     bsdfs: HashMap<String, Option<BuiltBsdf>>,
+    /// Ids of the objects being built, innermost last: a `<ref>` to one of them is a cycle.
+    building: Vec<String>,
+    /// Ids of area emitters that some shape references.
+    referenced_emitters: HashSet<&'t str>,
     /// Non-emissive material of each BSDF id, shared by every shape that references it.
     shared: HashMap<String, MaterialId>,
     default_material: Option<MaterialId>,
@@ -32,33 +36,30 @@ pub(crate) struct Builder<'t> {
 }
 
 impl<'t> Builder<'t> {
-    pub(crate) fn new(map: &'t SourceMap<'t>) -> Self {
+    pub(crate) fn new(sources: &'t Sources) -> Self {
         Builder {
-            map,
+            sources,
             diags: Vec::new(),
-            dir: map
-                .file
-                .parent()
-                .unwrap_or(std::path::Path::new("."))
-                .to_path_buf(),
             ids: HashMap::new(),
             bsdfs: HashMap::new(),
+            building: Vec::new(),
+            referenced_emitters: HashSet::new(),
             shared: HashMap::new(),
             default_material: None,
             scene: Scene {
-                source: map.file.to_path_buf(),
+                source: sources.main().to_path_buf(),
                 ..Scene::default()
             },
         }
     }
 
     pub(super) fn error(&mut self, at: usize, msg: impl Into<String>) {
-        let d = self.map.error(at, msg);
+        let d = self.sources.error(at, msg);
         self.diags.push(d);
     }
 
     pub(super) fn warning(&mut self, at: usize, msg: impl Into<String>) {
-        let d = self.map.warning(at, msg);
+        let d = self.sources.warning(at, msg);
         self.diags.push(d);
     }
 
@@ -75,12 +76,24 @@ impl<'t> Builder<'t> {
 
     // ----- the scene ----------------------------------------------------------------------
 
-    pub(crate) fn build(&mut self, objects: &'t [Obj]) {
+    pub(crate) fn build(&mut self, doc: &'t Doc) {
+        let objects = &doc.objects;
         for o in objects {
-            if let Some(id) = &o.id
-                && self.ids.insert(id.as_str(), o).is_some()
-            {
-                self.error(o.at, format!("id \"{id}\" is used twice"));
+            self.register(o);
+        }
+        for a in &doc.aliases {
+            if self.ids.contains_key(a.to.as_str()) {
+                self.error(
+                    a.at,
+                    format!("<alias as=\"{}\">: the id is already used", a.to),
+                );
+            } else if let Some(o) = self.ids.get(a.from.as_str()) {
+                self.ids.insert(a.to.as_str(), *o);
+            } else {
+                self.error(
+                    a.at,
+                    format!("<alias id=\"{}\">: no object has this id", a.from),
+                );
             }
         }
         let mut sensor_seen = false;
@@ -104,6 +117,8 @@ impl<'t> Builder<'t> {
                         .all(|m| m.positions.iter().all(|p| p.is_finite()));
                     self.single_precision(ok, o);
                 }
+                // Built where a shape references it.
+                "emitter" if o.kind == "area" && o.id.is_some() => {}
                 "emitter" => {
                     let before = self.scene.lights.len();
                     self.emitter(o);
@@ -156,7 +171,36 @@ impl<'t> Builder<'t> {
                 ),
             }
         }
+        for o in objects {
+            if o.tag == "emitter"
+                && o.kind == "area"
+                && let Some(id) = &o.id
+                && !self.referenced_emitters.contains(id.as_str())
+            {
+                self.warning(
+                    o.at,
+                    format!(
+                        "{} is not referenced by any shape: it emits nothing",
+                        o.describe()
+                    ),
+                );
+            }
+        }
         self.check_lights();
+    }
+
+    /// Records the ids of `o` and of the objects nested in it.
+    fn register(&mut self, o: &'t Obj) {
+        if let Some(id) = &o.id
+            && self.ids.insert(id.as_str(), o).is_some()
+        {
+            self.error(o.at, format!("id \"{id}\" is used twice"));
+        }
+        for c in &o.children {
+            if let ChildKind::Obj(n) = &c.kind {
+                self.register(n);
+            }
+        }
     }
 
     pub(super) fn check_lights(&mut self) {
@@ -166,15 +210,17 @@ impl<'t> Builder<'t> {
             .iter()
             .any(|m| s.material(m.material).is_emissive());
         if s.meshes.is_empty() && s.lights.is_empty() && s.environment.is_none() {
-            self.error(
-                0,
+            let d = self.sources.whole(
+                Severity::Error,
                 "the scene is empty: it has no shapes, lights or environment",
             );
+            self.diags.push(d);
         } else if !emitters
             && s.lights.is_empty()
             && s.environment.is_none_or(|e| e.max_element() <= 0.0)
         {
-            self.warning(0, "the scene has no light source (no area, point, spot or constant emitter): it will render black");
+            let d = self.sources.whole(Severity::Warning, "the scene has no light source (no area, point, spot or constant emitter): it will render black");
+            self.diags.push(d);
         }
     }
 }

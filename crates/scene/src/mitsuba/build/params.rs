@@ -2,6 +2,7 @@
 //! [`Builder::finish`] reports what no plugin read.
 use super::Builder;
 use crate::Rgb;
+use crate::mitsuba::spectrum;
 use crate::mitsuba::xml::{ChildKind, Obj, Prop, Value};
 use glam::{DMat4, DVec3};
 
@@ -137,10 +138,15 @@ impl<'t> Builder<'t> {
         if let Some(p) = self.prop(o, name) {
             let c = match &p.value {
                 Value::Rgb(c) => *c,
+                // As Mitsuba's RGB variants: the colour of a spectrum depends on whether it
+                // is emitted (`spectrum.rs`).
+                Value::UniformSpectrum(v) if o.tag == "emitter" => spectrum::uniform_emitter(*v),
+                Value::UniformSpectrum(v) => DVec3::splat(*v),
+                Value::Spectrum(pairs) => spectrum::to_srgb(pairs, o.tag == "emitter"),
                 Value::Float(x) => DVec3::splat(*x),
                 Value::Integer(i) => DVec3::splat(*i as f64),
                 _ => {
-                    self.wrong_type(o, p, "an <rgb>, constant <spectrum> or <float>");
+                    self.wrong_type(o, p, "an <rgb>, <spectrum> or <float>");
                     return None;
                 }
             };

@@ -52,6 +52,8 @@ impl<'t> Builder<'t> {
         // Accepted and ignored: eyeadapt does not clip (documented in docs/mitsuba.md).
         self.float(o, "near_clip");
         self.float(o, "far_clip");
+        // A pinhole is in focus everywhere: Mitsuba's perspective sensor ignores it too.
+        self.float(o, "focus_distance");
         let (width, height) = match self.nested(o, "film") {
             Some(f) => self.film(f),
             None => (768, 576),
@@ -177,6 +179,7 @@ impl<'t> Builder<'t> {
         };
         let width = size(self, "width", 768);
         let height = size(self, "height", 576);
+        self.full_crop(f, width, height);
         // Accepted and ignored: eyeadapt writes its own EXR layout.
         for s in ["file_format", "pixel_format", "component_format"] {
             self.string(f, s);
@@ -198,6 +201,30 @@ impl<'t> Builder<'t> {
         }
         self.finish(f);
         (width, height)
+    }
+
+    /// `crop_offset_*`/`crop_width`/`crop_height` are accepted when they keep the whole film;
+    /// a real crop is an error (eyeadapt renders whole frames).
+    fn full_crop(&mut self, f: &Obj, width: u32, height: u32) {
+        let full = [
+            ("crop_offset_x", 0),
+            ("crop_offset_y", 0),
+            ("crop_width", i64::from(width)),
+            ("crop_height", i64::from(height)),
+        ];
+        for (name, whole) in full {
+            if let Some((v, at)) = self.int(f, name)
+                && v != whole
+            {
+                self.error(
+                    at,
+                    format!(
+                        "{}: {name} {v} crops the film: eyeadapt renders the whole {width}×{height} frame ({name} must be {whole} or absent)",
+                        f.describe()
+                    ),
+                );
+            }
+        }
     }
 
     pub(super) fn sampler(&mut self, s: &'t Obj) {

@@ -25,10 +25,7 @@ impl<'t> Builder<'t> {
         } else {
             self.boolean(o, "face_normals").unwrap_or(false)
         };
-        let label = format!(
-            "shape[{index}] ({kind}, line {})",
-            self.map.line_col(o.at).0
-        );
+        let label = format!("shape[{index}] ({kind}, line {})", self.sources.line(o.at));
         let mut meshes: Vec<Mesh> = match kind {
             "obj" | "ply" => {
                 self.boolean(o, "flip_tex_coords");
@@ -40,7 +37,7 @@ impl<'t> Builder<'t> {
                     self.finish(o);
                     return;
                 };
-                let path = self.dir.join(file);
+                let path = self.sources.resolve(file);
                 let loaded = if kind == "obj" {
                     obj::load_obj(&path, Some(MaterialId(0))).map(|l| l.meshes)
                 } else {
@@ -193,7 +190,17 @@ impl<'t> Builder<'t> {
     pub(super) fn shape_emission(&mut self, o: &'t Obj) -> Option<Rgb> {
         let mut out = None;
         for c in &o.children {
-            let ChildKind::Obj(e) = &c.kind else { continue };
+            let e = match &c.kind {
+                ChildKind::Obj(e) => e,
+                // A top-level `<emitter type="area" id=…>`.
+                ChildKind::Ref(id) => match self.ids.get(id.as_str()) {
+                    Some(e) if e.tag == "emitter" => {
+                        self.referenced_emitters.insert(id.as_str());
+                        *e
+                    }
+                    _ => continue,
+                },
+            };
             if e.tag != "emitter" {
                 continue;
             }
