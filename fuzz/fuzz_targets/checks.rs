@@ -2,7 +2,7 @@
 //! feeds every input kept in `tests/corpus/fuzz-regressions/TARGET/` to the same function in a
 //! normal `cargo test` (so it depends on nothing but the eyeadapt crates).
 #![allow(dead_code)]
-use eyeadapt_scene::{Bsdf, Light, Rgb as Vec3, Scene, check_colour, load_obj_bytes};
+use eyeadapt_scene::{Bsdf, Light, Param, Rgb as Vec3, Scene, check_colour, load_obj_bytes};
 use eyeadapt_sequencer::{FrameSet, MAX_FRAMES, chunk, chunk_count};
 use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View, render};
 use std::path::Path;
@@ -21,33 +21,47 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             m.indices.iter().flatten().all(|&i| i < n),
             "index out of range accepted"
         );
-        if let Some(eyeadapt_scene::MaterialId(i)) = m.material {
+    }
+    for inst in &scene.instances {
+        assert!(
+            (inst.mesh.0 as usize) < scene.meshes.len(),
+            "dangling mesh id"
+        );
+        if let Some(eyeadapt_scene::MaterialId(i)) = inst.material {
             assert!((i as usize) < scene.materials.len(), "dangling material id");
         }
     }
+    let colour = |p: &Param<Vec3>| match p {
+        Param::Const(c) => check_colour(*c).is_ok(),
+        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
+    };
+    let number = |p: &Param<f32>| match p {
+        Param::Const(x) => x.is_finite(),
+        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
+    };
     for mat in &scene.materials {
         assert!(
             check_colour(mat.emission).is_ok(),
             "bad emission accepted: {mat:?}"
         );
         let ok = match &mat.bsdf {
-            Bsdf::Diffuse { reflectance } => check_colour(*reflectance).is_ok(),
+            Bsdf::Diffuse { reflectance } => colour(reflectance),
             Bsdf::Conductor {
                 alpha,
                 eta,
                 k,
                 specular_reflectance,
             } => {
-                alpha.is_finite()
+                number(alpha)
                     && check_colour(*eta).is_ok()
                     && check_colour(*k).is_ok()
-                    && check_colour(*specular_reflectance).is_ok()
+                    && colour(specular_reflectance)
             }
             Bsdf::Plastic {
                 reflectance,
                 alpha,
                 ior,
-            } => check_colour(*reflectance).is_ok() && alpha.is_finite() && ior.is_finite(),
+            } => colour(reflectance) && number(alpha) && ior.is_finite(),
         };
         assert!(ok, "bad material accepted: {mat:?}");
     }
@@ -164,9 +178,9 @@ pub fn obj(data: &[u8]) {
     };
     assert_eq!(loaded.meshes.len(), loaded.materials.len());
     let mut scene = Scene::default();
-    for (mut mesh, mat) in loaded.meshes.into_iter().zip(loaded.materials) {
-        mesh.material = mat.map(|m| scene.add_material(m));
-        scene.meshes.push(mesh);
+    for (mesh, mat) in loaded.meshes.into_iter().zip(loaded.materials) {
+        let material = mat.map(|m| scene.add_material(m));
+        scene.add_world_mesh(mesh, material);
     }
     scene.environment = Some(Vec3::splat(0.5));
     check_accepted_scene(&scene, 20_000);

@@ -1,7 +1,8 @@
 //! Scene description for eyeadapt: plain data, loading and validation, no rendering behaviour.
 //!
 //! A [`Scene`] is loaded from a TOML file by [`load_scene`] (format: `docs/scene-format.md`).
-//! It owns triangle [`Mesh`]es in world space, [`Material`]s referenced by [`MaterialId`],
+//! It owns triangle [`Mesh`]es in object space placed by [`Instance`]s, [`Material`]s
+//! referenced by [`MaterialId`] whose parameters are constants or [`Texture`]s ([`Param`]),
 //! delta [`Light`]s (point and spot), an optional constant environment, the [`Camera`] and an
 //! optional [`CameraPath`] (keyframes that [`CameraPath::sample`] turns into a [`CameraPose`]).
 //! Quads, boxes and spheres are tessellated at load time; OBJ files come in through `tobj`.
@@ -19,13 +20,16 @@ mod camera;
 mod camera_path;
 mod diagnostic;
 mod format;
+mod instance;
 mod light;
 mod load;
 mod material;
 mod mesh;
 mod mitsuba;
 mod obj;
+mod scene;
 mod shapes;
+mod texture;
 mod transform;
 
 pub use crate::any::{is_mitsuba_path, load_scene_file};
@@ -33,13 +37,16 @@ pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
+pub use crate::instance::Instance;
 pub use crate::light::Light;
-pub use crate::load::{RenderDefaults, Scene, load_scene, load_scene_str};
-pub use crate::material::{Bsdf, Material, MaterialId};
-pub use crate::mesh::Mesh;
+pub use crate::load::{load_scene, load_scene_str};
+pub use crate::material::{Bsdf, Material, MaterialId, Param};
+pub use crate::mesh::{Mesh, MeshId};
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};
+pub use crate::scene::{RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
+pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
 pub use crate::transform::Transform;
 
 /// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).

@@ -2,61 +2,13 @@
 use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 use crate::format::{CameraDef, LightDef, MaterialDef, SceneFile, ShapeDef, TransformDef, V3};
 use crate::{
-    Bsdf, Camera, Light, Material, MaterialId, Mesh, Rgb, Transform, box_mesh, obj, quad_mesh,
-    shapes, sphere_mesh,
+    Bsdf, Camera, CameraPath, Light, Material, MaterialId, Mesh, Param, RenderDefaults, Rgb, Scene,
+    Transform, box_mesh, obj, quad_mesh, shapes, sphere_mesh,
 };
 use glam::{Mat4, Quat, Vec3};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
-
-/// Render settings a scene file may suggest; command-line flags and job files override them.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct RenderDefaults {
-    pub spp: Option<u32>,
-    /// Mitsuba's convention: the longest path has `max_depth` segments; −1 = unlimited.
-    pub max_depth: Option<i32>,
-    pub rr_depth: Option<u32>,
-    pub seed: Option<u64>,
-}
-
-/// A loaded scene: plain data for the tracer.
-#[derive(Clone, Debug, Default)]
-pub struct Scene {
-    /// The file it came from (for messages and relative paths).
-    pub source: PathBuf,
-    pub camera: Option<Camera>,
-    pub materials: Vec<Material>,
-    pub meshes: Vec<Mesh>,
-    pub lights: Vec<Light>,
-    /// Constant environment radiance seen by rays that leave the scene.
-    pub environment: Option<Rgb>,
-    pub render: RenderDefaults,
-    /// The raw `[camera_path]` table and its location, validated by the sequencer's path code.
-    pub camera_path: Option<(toml::Value, usize, usize)>,
-    /// Warnings met while loading (missing MTL, unknown material, …), already formatted.
-    pub warnings: Vec<Diagnostic>,
-}
-
-impl Scene {
-    pub fn material(&self, id: Option<MaterialId>) -> &Material {
-        static ERROR: std::sync::OnceLock<Material> = std::sync::OnceLock::new();
-        match id {
-            Some(MaterialId(i)) => &self.materials[i as usize],
-            None => ERROR.get_or_init(Material::error),
-        }
-    }
-
-    pub fn triangle_count(&self) -> usize {
-        self.meshes.iter().map(Mesh::triangle_count).sum()
-    }
-
-    /// Adds a material and returns its id.
-    pub fn add_material(&mut self, m: Material) -> MaterialId {
-        self.materials.push(m);
-        MaterialId(self.materials.len() as u32 - 1)
-    }
-}
 
 /// Loads and validates a TOML scene file. OBJ paths are relative to the file's directory.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
@@ -192,13 +144,9 @@ impl Ctx<'_> {
             scene.environment = Some(self.colour(&env.get_ref().radiance, "environment radiance"));
         }
         if let Some(p) = raw.camera_path {
-            let (line, col) = self.map.line_col(p.span().start);
-            scene.camera_path = Some((p.into_inner(), line, col));
+            scene.camera_path = self.camera_path(p);
         }
-        let emitters = scene
-            .meshes
-            .iter()
-            .any(|m| scene.material(m.material).is_emissive());
+        let emitters = scene.has_emissive_instance();
         if scene.meshes.is_empty() && scene.lights.is_empty() && scene.environment.is_none() {
             self.error(
                 0,
@@ -211,6 +159,29 @@ impl Ctx<'_> {
             self.warning(0, "the scene has no light source (no emissive material, light or environment): it will render black");
         }
         scene
+    }
+
+    /// The `[camera_path]` table, deserialised and validated; problems at the table.
+    fn camera_path(&mut self, p: Spanned<toml::Value>) -> Option<CameraPath> {
+        let at = p.span().start;
+        let path: CameraPath = match p.into_inner().try_into() {
+            Ok(path) => path,
+            Err(e) => {
+                let e: toml::de::Error = e;
+                let msg = e.message().trim().replace('\n', " ");
+                self.error(at, format!("camera_path: {msg}"));
+                return None;
+            }
+        };
+        match path.validate() {
+            Ok(()) => Some(path),
+            Err(problems) => {
+                for problem in problems {
+                    self.error(at, problem.to_string());
+                }
+                None
+            }
+        }
     }
 
     fn camera(&mut self, c: &Spanned<CameraDef>) -> Camera {
@@ -381,7 +352,7 @@ impl Ctx<'_> {
         };
         let bsdf = match kind {
             "diffuse" => Bsdf::Diffuse {
-                reflectance: reflectance(self),
+                reflectance: Param::Const(reflectance(self)),
             },
             "conductor" => {
                 let alpha = roughness(self);
@@ -398,10 +369,10 @@ impl Ctx<'_> {
                     .as_ref()
                     .map_or(Rgb::ONE, |v| self.colour(v, "specular_reflectance"));
                 Bsdf::Conductor {
-                    alpha,
+                    alpha: Param::Const(alpha),
                     eta,
                     k,
-                    specular_reflectance,
+                    specular_reflectance: Param::Const(specular_reflectance),
                 }
             }
             _ => {
@@ -414,8 +385,8 @@ impl Ctx<'_> {
                     x
                 });
                 Bsdf::Plastic {
-                    reflectance: reflectance(self),
-                    alpha: roughness(self).max(0.01),
+                    reflectance: Param::Const(reflectance(self)),
+                    alpha: Param::Const(roughness(self).max(0.01)),
                     ior,
                 }
             }
@@ -577,7 +548,7 @@ impl Ctx<'_> {
             .as_ref()
             .map(|t| self.transform(t))
             .unwrap_or_default();
-        let mut meshes = match kind {
+        let mut meshes: Vec<(Mesh, Option<MaterialId>)> = match kind {
             "quad" => {
                 let corner = d
                     .corner
@@ -597,7 +568,7 @@ impl Ctx<'_> {
                         ),
                     );
                 }
-                vec![quad_mesh(corner, u, v)]
+                vec![(quad_mesh(corner, u, v), material)]
             }
             "box" => {
                 let min = d
@@ -614,7 +585,7 @@ impl Ctx<'_> {
                         format!("shapes[{index}] box needs max > min on every axis"),
                     );
                 }
-                vec![box_mesh(min, max)]
+                vec![(box_mesh(min, max), material)]
             }
             "sphere" => {
                 let center = d
@@ -636,7 +607,7 @@ impl Ctx<'_> {
                     }
                     None => 4,
                 };
-                vec![sphere_mesh(center, radius, level)]
+                vec![(sphere_mesh(center, radius, level), material)]
             }
             _ => {
                 let Some(file) = &d.file else {
@@ -652,13 +623,15 @@ impl Ctx<'_> {
                         for w in loaded.warnings {
                             self.warning(file.span().start, w);
                         }
-                        let mut meshes = loaded.meshes;
-                        for (m, mat) in meshes.iter_mut().zip(loaded.materials) {
-                            if material.is_none() {
-                                m.material = mat.map(|mm| scene.add_material(mm));
-                            }
-                        }
-                        meshes
+                        loaded
+                            .meshes
+                            .into_iter()
+                            .zip(loaded.materials)
+                            .map(|(m, mat)| match material {
+                                Some(_) => (m, material),
+                                None => (m, mat.map(|mm| scene.add_material(mm))),
+                            })
+                            .collect()
                     }
                     Err(e) => {
                         self.error(file.span().start, e);
@@ -667,12 +640,9 @@ impl Ctx<'_> {
                 }
             }
         };
-        for m in &mut meshes {
+        for (m, _) in &mut meshes {
             if m.name.is_empty() {
                 m.name = format!("shapes[{index}] ({kind})");
-            }
-            if kind != "obj" || material.is_some() {
-                m.material = material;
             }
             for p in &mut m.positions {
                 *p = transform.point(*p);
@@ -690,7 +660,9 @@ impl Ctx<'_> {
                 shapes::flip(m);
             }
         }
-        scene.meshes.extend(meshes);
+        for (m, material) in meshes {
+            scene.add_world_mesh(m, material);
+        }
     }
 
     fn light(&mut self, l: &Spanned<LightDef>) -> Option<Light> {

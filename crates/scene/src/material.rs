@@ -26,7 +26,37 @@
 //! roughness = 0.05                  # GGX alpha of the coating, clamped to >= 0.01
 //! ior = 1.5
 //! ```
-use crate::Rgb;
+use crate::{Rgb, TextureId};
+
+/// A material parameter: a constant, or a texture looked up at each hit (a texture read as a
+/// number uses its luminance, as Mitsuba's `eval_1` does).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Param<T> {
+    Const(T),
+    Texture(TextureId),
+}
+
+impl<T: Copy> Param<T> {
+    /// The value when it is constant.
+    pub fn constant(&self) -> Option<T> {
+        match *self {
+            Param::Const(v) => Some(v),
+            Param::Texture(_) => None,
+        }
+    }
+}
+
+impl From<Rgb> for Param<Rgb> {
+    fn from(c: Rgb) -> Self {
+        Param::Const(c)
+    }
+}
+
+impl From<f32> for Param<f32> {
+    fn from(x: f32) -> Self {
+        Param::Const(x)
+    }
+}
 
 /// Index into [`crate::Scene::materials`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,19 +66,20 @@ pub struct MaterialId(pub u32);
 #[derive(Clone, Debug, PartialEq)]
 pub enum Bsdf {
     /// Lambertian reflector.
-    Diffuse { reflectance: Rgb },
+    Diffuse { reflectance: Param<Rgb> },
     /// GGX conductor with a per-channel complex IOR; `alpha == 0` is a perfect mirror.
     Conductor {
-        alpha: f32,
+        alpha: Param<f32>,
         eta: Rgb,
         k: Rgb,
-        specular_reflectance: Rgb,
+        specular_reflectance: Param<Rgb>,
     },
     /// GGX dielectric coating (`ior`) over a Lambertian base (`reflectance`), after Mitsuba's
     /// `roughplastic` with `nonlinear = false`.
     Plastic {
-        reflectance: Rgb,
-        alpha: f32,
+        reflectance: Param<Rgb>,
+        /// Clamped to at least 0.01 where it is evaluated.
+        alpha: Param<f32>,
         ior: f32,
     },
 }
@@ -69,7 +100,7 @@ impl Material {
         Material {
             name: "<error>".into(),
             bsdf: Bsdf::Diffuse {
-                reflectance: Rgb::new(0.8, 0.0, 0.8),
+                reflectance: Param::Const(Rgb::new(0.8, 0.0, 0.8)),
             },
             emission: Rgb::ZERO,
         }
@@ -78,7 +109,9 @@ impl Material {
     pub fn diffuse(name: &str, reflectance: Rgb) -> Material {
         Material {
             name: name.into(),
-            bsdf: Bsdf::Diffuse { reflectance },
+            bsdf: Bsdf::Diffuse {
+                reflectance: Param::Const(reflectance),
+            },
             emission: Rgb::ZERO,
         }
     }

@@ -1,5 +1,5 @@
 //! Wavefront OBJ through `tobj`, with MTL `Kd` (diffuse reflectance) and `Ke` (emission).
-use crate::{Bsdf, Material, MaterialId, Mesh, Rgb};
+use crate::{Bsdf, Material, MaterialId, Mesh, Param, Rgb};
 use glam::Vec3;
 use std::cell::RefCell;
 use std::path::Path;
@@ -286,7 +286,7 @@ fn convert(
             positions,
             indices,
             normals,
-            material: override_material,
+            ..Mesh::default()
         });
         out.materials.push(material);
     }
@@ -316,7 +316,7 @@ fn from_mtl(path: &Path, mtl: &tobj::Material) -> Result<Material, String> {
     Ok(Material {
         name: format!("{}:{}", path.display(), mtl.name),
         bsdf: Bsdf::Diffuse {
-            reflectance: kd.min(Rgb::ONE),
+            reflectance: Param::Const(kd.min(Rgb::ONE)),
         },
         emission: ke,
     })

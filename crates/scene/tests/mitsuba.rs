@@ -1,7 +1,7 @@
 //! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
 //! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
 use eyeadapt_scene::{
-    Bsdf, Light, Mesh, Scene, SceneError, load_mitsuba, load_mitsuba_str, load_scene,
+    Bsdf, Light, Param, Scene, SceneError, load_mitsuba, load_mitsuba_str, load_scene,
     load_scene_file, mitsuba_vertical_fov,
 };
 use glam::Vec3;
@@ -31,8 +31,8 @@ fn line_of(text: &str, needle: &str) -> usize {
 /// Total area per material, keyed by what the material is (not its name).
 fn area_by_material(s: &Scene) -> BTreeMap<String, f64> {
     let mut out = BTreeMap::new();
-    for m in &s.meshes {
-        let mat = s.material(m.material);
+    for inst in &s.instances {
+        let (m, mat) = (s.mesh(inst.mesh), s.material(inst.material));
         let key = format!("{:?} emits {:?}", mat.bsdf, mat.emission);
         *out.entry(key).or_insert(0.0) += m.area();
     }
@@ -60,10 +60,10 @@ fn triangles(s: &Scene) -> Vec<[f32; 9]> {
 }
 
 fn emissive_area(s: &Scene) -> f64 {
-    s.meshes
+    s.instances
         .iter()
-        .filter(|m| s.material(m.material).is_emissive())
-        .map(Mesh::area)
+        .filter(|i| s.material(i.material).is_emissive())
+        .map(|i| s.mesh(i.mesh).area())
         .sum()
 }
 
@@ -88,9 +88,9 @@ fn cornell_xml_matches_the_toml_camera_render_settings_and_light() {
         "{xa} vs {ta}"
     );
     let light = |s: &Scene| {
-        s.meshes
+        s.instances
             .iter()
-            .map(|m| s.material(m.material))
+            .map(|i| s.material(i.material))
             .find(|m| m.is_emissive())
             .unwrap()
             .clone()
@@ -126,11 +126,12 @@ fn cornell_xml_and_toml_have_the_same_triangles_per_material() {
     assert_eq!(x.materials.len(), 4);
     // Same front sides: the light faces down in both.
     for s in [&x, &t] {
-        let m = s
-            .meshes
+        let lamp = s
+            .instances
             .iter()
-            .find(|m| s.material(m.material).is_emissive())
+            .find(|i| s.material(i.material).is_emissive())
             .unwrap();
+        let m = s.mesh(lamp.mesh);
         let [a, b, c] = m.indices[0].map(|i| m.positions[i as usize]);
         assert!((b - a).cross(c - a).y < 0.0);
     }
@@ -160,7 +161,7 @@ fn parameters_come_from_defaults_and_caller_overrides() {
     assert_eq!(
         s.materials[0].bsdf,
         Bsdf::Diffuse {
-            reflectance: Vec3::new(0.25, 0.25, 0.5)
+            reflectance: Vec3::new(0.25, 0.25, 0.5).into()
         }
     );
     assert!(matches!(s.lights[0], Light::Point { intensity, .. } if intensity == Vec3::splat(3.0)));
@@ -304,17 +305,17 @@ fn supported_plugins_load() {
     let sphere = &s.meshes[1];
     let c = sphere.positions.iter().sum::<Vec3>() / sphere.positions.len() as f32;
     assert!(c.distance(Vec3::new(1.0, 2.0, 3.0)) < 1e-4);
-    match &s.material(sphere.material).bsdf {
+    match &s.material(s.instances[1].material).bsdf {
         Bsdf::Conductor { alpha, eta, .. } => {
-            assert_eq!(*alpha, 0.2);
+            assert_eq!(*alpha, 0.2.into());
             assert!((eta.x - 0.143).abs() < 1e-3, "Mitsuba's Au: {eta}");
         }
         b => panic!("{b:?}"),
     }
-    match &s.material(s.meshes[2].material).bsdf {
+    match &s.material(s.instances[2].material).bsdf {
         Bsdf::Plastic { ior, alpha, .. } => {
             assert!((ior - 1.5046 / 1.000277).abs() < 1e-5);
-            assert_eq!(*alpha, 0.01);
+            assert_eq!(*alpha, 0.01.into());
         }
         b => panic!("{b:?}"),
     }
@@ -322,12 +323,12 @@ fn supported_plugins_load() {
     let cube = &s.meshes[2];
     let [a, b, c] = cube.indices[0].map(|i| cube.positions[i as usize]);
     assert!((b - a).cross(c - a).dot((a + b + c) / 3.0) < 0.0);
-    let lamp = s.material(s.meshes[3].material);
+    let lamp = s.material(s.instances[3].material);
     assert_eq!(lamp.emission, Vec3::new(1.0, 2.0, 3.0));
     assert_eq!(
         lamp.bsdf,
         Bsdf::Diffuse {
-            reflectance: Vec3::splat(0.5)
+            reflectance: Vec3::splat(0.5).into()
         },
         "Mitsuba's default BSDF"
     );
@@ -526,9 +527,9 @@ fn includes_are_relative_to_the_including_file_and_name_their_own_lines() {
     ]);
     let s = s.unwrap();
     assert_eq!(
-        s.material(s.meshes[0].material).bsdf,
+        s.material(s.instances[0].material).bsdf,
         Bsdf::Diffuse {
-            reflectance: Vec3::splat(0.25)
+            reflectance: Vec3::splat(0.25).into()
         }
     );
     let (_d, e) = load_files(&[
@@ -617,7 +618,10 @@ fn top_level_emitters_and_bsdfs_are_referenced_by_id_and_ref_cycles_are_errors()
         "<emitter type=\"area\" id=\"lamp\"><rgb name=\"radiance\" value=\"4\"/></emitter>\n<bsdf type=\"diffuse\" id=\"w\"/>\n<shape type=\"rectangle\"><ref name=\"bsdf\" id=\"w\"/><ref id=\"lamp\"/></shape>",
     )
     .unwrap();
-    assert_eq!(s.material(s.meshes[0].material).emission, Vec3::splat(4.0));
+    assert_eq!(
+        s.material(s.instances[0].material).emission,
+        Vec3::splat(4.0)
+    );
     let e = load(&format!(
         "<bsdf type=\"twosided\" id=\"a\"><ref id=\"b\"/></bsdf>\n<bsdf type=\"twosided\" id=\"b\"><ref id=\"a\"/></bsdf>\n<bsdf type=\"twosided\" id=\"me\"><ref id=\"me\"/></bsdf>\n{LIT_CUBE}<bsdf type=\"diffuse\" id=\"white\"/>"
     ))
@@ -633,8 +637,11 @@ fn spectra_become_rgb_as_in_mitsubas_rgb_variants() {
         "<shape type=\"cube\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"400:0.5, 700:0.5\"/></bsdf>\n<emitter type=\"area\"><spectrum name=\"radiance\" value=\"2\"/></emitter></shape>",
     )
     .unwrap();
-    let m = s.material(s.meshes[0].material);
-    let Bsdf::Diffuse { reflectance } = m.bsdf else {
+    let m = s.material(s.instances[0].material);
+    let Bsdf::Diffuse {
+        reflectance: Param::Const(reflectance),
+    } = m.bsdf
+    else {
         panic!()
     };
     // Flat over 400-700 nm only: nearly grey, a little less than 0.5 (the tails are cut off).

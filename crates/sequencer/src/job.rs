@@ -362,16 +362,7 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         scene.as_ref().and_then(|s| s.camera_path.clone()),
     ) {
         (Some(v), _) => parse_path(v.get_ref().clone(), &map, v.span().start, &mut errors),
-        (None, Some((v, line, col))) => match path_from_toml(v) {
-            Ok(p) => Some(p),
-            Err(es) => {
-                errors.extend(
-                    es.iter()
-                        .map(|e| format!("{}:{line}:{col}: error: camera_path: {e}", scene_spec)),
-                );
-                None
-            }
-        },
+        (None, Some(p)) => Some(p),
         (None, None) => {
             if scene.is_some() {
                 err(
@@ -496,6 +487,9 @@ pub fn job_hash(job: &Job) -> String {
         job.estimators, job.estimator_config, job.adaptation, job.temporal
     ));
     let s = &job.scene;
+    for inst in &s.instances {
+        h.update(format!("{inst:?}\n"));
+    }
     for m in &s.meshes {
         for p in &m.positions {
             h.update(bytes3(p.to_array()));
@@ -508,11 +502,16 @@ pub fn job_hash(job: &Job) -> String {
         for n in &m.normals {
             h.update(bytes3(n.to_array()));
         }
-        h.update(format!("{:?}\n", m.material));
+        for uv in &m.uvs {
+            h.update(format!("{uv:?}"));
+        }
+        for c in &m.colors {
+            h.update(bytes3(c.to_array()));
+        }
     }
     h.update(format!(
-        "{:?}\n{:?}\n{:?}\n",
-        s.materials, s.lights, s.environment
+        "{:?}\n{:?}\n{:?}\n{:?}\n",
+        s.materials, s.textures, s.lights, s.environment
     ));
     for f in 0..job.path.frame_count() {
         let v = job.view(f as u32);

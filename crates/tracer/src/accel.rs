@@ -254,13 +254,15 @@ pub fn scene_triangles(
 ) -> Vec<InputTri> {
     let mut out = Vec::with_capacity(scene.triangle_count());
     let mut next_light = 0u32;
-    for mesh in &scene.meshes {
-        let mat = material_index(mesh.material);
+    for inst in &scene.instances {
+        let mesh = scene.mesh(inst.mesh);
+        let mat = material_index(inst.material);
         let is_light = emissive(mat);
+        let m = inst.to_world;
         for tri in &mesh.indices {
-            let v = tri.map(|i| Vec3A::from(mesh.positions[i as usize]));
+            let v = tri.map(|i| Vec3A::from(m.point(mesh.positions[i as usize])));
             let n = (!mesh.normals.is_empty())
-                .then(|| tri.map(|i| Vec3A::from(mesh.normals[i as usize])));
+                .then(|| tri.map(|i| Vec3A::from(m.normal(mesh.normals[i as usize]))));
             let area2 = (v[1] - v[0]).cross(v[2] - v[0]).length();
             let light = if is_light && area2 > 0.0 && area2.is_finite() {
                 next_light += 1;

@@ -1,7 +1,7 @@
 //! BSDFs in the local shading frame (+z = shading normal, turned towards the viewer, so every
 //! surface is two-sided for reflection). `f` values exclude the cosine.
 use crate::microfacet::{Ggx, fresnel_conductor, fresnel_dielectric, internal_diffuse_reflectance};
-use eyeadapt_scene::Bsdf as SceneBsdf;
+use eyeadapt_scene::{Bsdf as SceneBsdf, Param, Rgb};
 use glam::Vec3A;
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -76,9 +76,11 @@ fn reflect(wo: Vec3A, m: Vec3A) -> Vec3A {
 
 impl Bsdf {
     pub fn from_scene(b: &SceneBsdf) -> Bsdf {
+        let rgb = |p: Param<Rgb>| p.constant().unwrap_or(Rgb::splat(0.5));
+        let num = |p: Param<f32>| p.constant().unwrap_or(0.1);
         match *b {
             SceneBsdf::Diffuse { reflectance } => Bsdf::Diffuse {
-                reflectance: reflectance.into(),
+                reflectance: rgb(reflectance).into(),
             },
             SceneBsdf::Conductor {
                 alpha,
@@ -86,6 +88,7 @@ impl Bsdf {
                 k,
                 specular_reflectance,
             } => {
+                let (alpha, specular_reflectance) = (num(alpha), rgb(specular_reflectance));
                 if alpha <= 1e-4 {
                     Bsdf::Mirror {
                         eta: eta.into(),
@@ -106,6 +109,7 @@ impl Bsdf {
                 alpha,
                 ior,
             } => {
+                let (reflectance, alpha) = (rgb(reflectance), num(alpha));
                 let fdr = internal_diffuse_reflectance(ior);
                 let d_mean = (reflectance.x + reflectance.y + reflectance.z) / 3.0;
                 Bsdf::Plastic {
@@ -253,23 +257,23 @@ mod tests {
         use eyeadapt_scene::{Bsdf as S, Rgb};
         [
             S::Diffuse {
-                reflectance: Rgb::new(0.8, 0.5, 0.2),
+                reflectance: Rgb::new(0.8, 0.5, 0.2).into(),
             },
             S::Conductor {
-                alpha: 0.3,
+                alpha: 0.3.into(),
                 eta: Rgb::new(0.2, 0.9, 1.1),
                 k: Rgb::new(3.9, 2.4, 2.1),
-                specular_reflectance: Rgb::ONE,
+                specular_reflectance: Rgb::ONE.into(),
             },
             S::Conductor {
-                alpha: 0.05,
+                alpha: 0.05.into(),
                 eta: Rgb::splat(1.5),
                 k: Rgb::splat(3.0),
-                specular_reflectance: Rgb::ONE,
+                specular_reflectance: Rgb::ONE.into(),
             },
             S::Plastic {
-                reflectance: Rgb::new(0.5, 0.3, 0.1),
-                alpha: 0.2,
+                reflectance: Rgb::new(0.5, 0.3, 0.1).into(),
+                alpha: 0.2.into(),
                 ior: 1.5,
             },
         ]

@@ -92,9 +92,8 @@ fn assert_converges(px: &[([f64; 3], [f64; 3])], expected: [f64; 3]) {
 fn white_furnace_renders_one_everywhere() {
     let mut scene = Scene::default();
     let white = scene.add_material(Material::diffuse("white", Vec3::ONE));
-    let mut sphere = sphere_mesh(Vec3::ZERO, 1.0, 3);
-    sphere.material = Some(white);
-    scene.meshes.push(sphere);
+    let sphere = sphere_mesh(Vec3::ZERO, 1.0, 3);
+    scene.add_world_mesh(sphere, Some(white));
     scene.environment = Some(Vec3::ONE);
     let data = SceneData::new(&scene);
     let view = View::from_camera(&camera(Vec3::new(0.0, 0.3, 4.0), Vec3::ZERO, 16, 12));
@@ -119,8 +118,7 @@ fn closed_sphere_converges_to_le_over_one_minus_rho() {
     for t in &mut sphere.indices {
         t.swap(1, 2);
     }
-    sphere.material = Some(m);
-    scene.meshes.push(sphere);
+    scene.add_world_mesh(sphere, Some(m));
     let data = SceneData::new(&scene);
     let view = View::from_camera(&camera(
         Vec3::new(0.1, 0.2, 0.3),
@@ -283,10 +281,7 @@ fn split_sphere(
     let u = f.cross(r);
     for (half, mat) in [(0, front), (1, back)] {
         let id = scene.add_material(mat);
-        let mut mesh = Mesh {
-            material: Some(id),
-            ..Mesh::default()
-        };
+        let mut mesh = Mesh::default();
         for i in 0..=n_theta / 2 {
             let theta = std::f32::consts::PI * (half * n_theta / 2 + i) as f32 / n_theta as f32;
             for j in 0..n_phi {
@@ -306,7 +301,7 @@ fn split_sphere(
                 mesh.indices.push([b, d, c]);
             }
         }
-        scene.meshes.push(mesh);
+        scene.add_world_mesh(mesh, Some(id));
     }
 }
 
@@ -361,8 +356,7 @@ fn eye_sensor_inside_closed_sphere_reads_pi_le_over_one_minus_rho() {
     for t in &mut sphere.indices {
         t.swap(1, 2);
     }
-    sphere.material = Some(m);
-    scene.meshes.push(sphere);
+    scene.add_world_mesh(sphere, Some(m));
     let got = eye_reading(&scene, &eye_view(Vec3::X), 30_000, 200);
     let expected = (le / (Vec3::ONE - rho)).as_dvec3() * PI;
     assert_within_3se(got, expected);
@@ -407,7 +401,7 @@ fn eye_sensor_scales_with_light_colour_per_channel() {
         }
         for m in &mut s.materials {
             if let eyeadapt_scene::Bsdf::Diffuse { reflectance } = &mut m.bsdf {
-                *reflectance = Vec3::splat(0.6);
+                *reflectance = Vec3::splat(0.6).into();
             }
         }
         s

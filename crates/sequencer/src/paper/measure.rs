@@ -43,13 +43,14 @@ impl Region {
     /// flat axes (a quad's normal).
     pub fn from_material(scene: &Scene, name: &str, material: &str, shrink: f32) -> Region {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for m in scene.meshes.iter().filter(|m| {
-            m.material
+        for inst in scene.instances.iter().filter(|i| {
+            i.material
                 .is_some_and(|id| scene.materials[id.0 as usize].name == material)
         }) {
-            for p in &m.positions {
-                lo = lo.min(*p);
-                hi = hi.max(*p);
+            for p in &scene.mesh(inst.mesh).positions {
+                let p = inst.to_world.point(*p);
+                lo = lo.min(p);
+                hi = hi.max(p);
             }
         }
         let ext = hi - lo;
@@ -78,7 +79,7 @@ pub fn reflectance(scene: &Scene, material: &str) -> Option<DVec3> {
         .iter()
         .find(|m| m.name == material)
         .and_then(|m| match m.bsdf {
-            Bsdf::Diffuse { reflectance } => Some(reflectance.as_dvec3()),
+            Bsdf::Diffuse { reflectance } => reflectance.constant().map(|r| r.as_dvec3()),
             _ => None,
         })
 }

@@ -88,7 +88,9 @@ impl<'t> Builder<'t> {
             "twosided" => return self.twosided(o),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
-                Bsdf::Diffuse { reflectance }
+                Bsdf::Diffuse {
+                    reflectance: reflectance.into(),
+                }
             }
             "conductor" | "roughconductor" => self.conductor(o),
             "plastic" | "roughplastic" => self.plastic(o),
@@ -238,10 +240,10 @@ impl<'t> Builder<'t> {
         };
         let specular_reflectance = self.colour(o, "specular_reflectance").unwrap_or(Rgb::ONE);
         Bsdf::Conductor {
-            alpha,
+            alpha: alpha.into(),
             eta,
             k,
-            specular_reflectance,
+            specular_reflectance: specular_reflectance.into(),
         }
     }
 
@@ -315,8 +317,8 @@ impl<'t> Builder<'t> {
             );
         }
         Bsdf::Plastic {
-            reflectance,
-            alpha: alpha.max(0.01),
+            reflectance: reflectance.into(),
+            alpha: alpha.max(0.01).into(),
             ior: ior as f32,
         }
     }

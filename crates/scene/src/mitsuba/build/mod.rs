@@ -205,10 +205,7 @@ impl<'t> Builder<'t> {
 
     pub(super) fn check_lights(&mut self) {
         let s = &self.scene;
-        let emitters = s
-            .meshes
-            .iter()
-            .any(|m| s.material(m.material).is_emissive());
+        let emitters = s.has_emissive_instance();
         if s.meshes.is_empty() && s.lights.is_empty() && s.environment.is_none() {
             let d = self.sources.whole(
                 Severity::Error,

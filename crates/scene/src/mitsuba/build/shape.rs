@@ -47,7 +47,7 @@ impl<'t> Builder<'t> {
                             positions: p.positions,
                             normals: p.normals,
                             indices: p.indices,
-                            material: None,
+                            ..Mesh::default()
                         }]
                     })
                 };
@@ -94,7 +94,7 @@ impl<'t> Builder<'t> {
                     Some(b) => (b.bsdf, b.name),
                     None => (
                         Bsdf::Diffuse {
-                            reflectance: Rgb::splat(0.5),
+                            reflectance: Rgb::splat(0.5).into(),
                         },
                         "default diffuse".to_string(),
                     ),
@@ -134,7 +134,6 @@ impl<'t> Builder<'t> {
             } else {
                 format!("{label} {}", mesh.name)
             };
-            mesh.material = material;
             for p in &mut mesh.positions {
                 *p = m.transform_point3(*p);
             }
@@ -156,7 +155,9 @@ impl<'t> Builder<'t> {
                 shapes::flip(mesh);
             }
         }
-        self.scene.meshes.extend(meshes);
+        for mesh in meshes {
+            self.scene.add_world_mesh(mesh, material);
+        }
     }
 
     /// The shape's BSDF: `Ok(None)` for none (Mitsuba's default diffuse), `Err` on errors.

@@ -1,0 +1,114 @@
+//! The loaded scene: plain data for the tracer, whatever front-end (TOML, Mitsuba XML) read it.
+use crate::{
+    Camera, CameraPath, Diagnostic, Instance, Light, Material, MaterialId, Mesh, MeshId, Rgb,
+    Texture, TextureId, Transform,
+};
+use std::path::PathBuf;
+
+/// Render settings a scene file may suggest; command-line flags and job files override them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderDefaults {
+    pub spp: Option<u32>,
+    /// Mitsuba's convention: the longest path has `max_depth` segments; −1 = unlimited.
+    pub max_depth: Option<i32>,
+    pub rr_depth: Option<u32>,
+    pub seed: Option<u64>,
+}
+
+/// A loaded scene: object-space meshes placed by instances, materials whose parameters may
+/// point into the texture table, delta lights, the environment, the camera and its path.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// The file it came from (for messages and relative paths).
+    pub source: PathBuf,
+    pub camera: Option<Camera>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    /// Unique geometry, in object space; only instances make it visible.
+    pub meshes: Vec<Mesh>,
+    pub instances: Vec<Instance>,
+    pub lights: Vec<Light>,
+    /// Constant environment radiance seen by rays that leave the scene.
+    pub environment: Option<Rgb>,
+    pub render: RenderDefaults,
+    /// The scene's own camera path, already validated.
+    pub camera_path: Option<CameraPath>,
+    /// Warnings met while loading (missing MTL, unknown material, …), already formatted.
+    pub warnings: Vec<Diagnostic>,
+}
+
+impl Scene {
+    pub fn material(&self, id: Option<MaterialId>) -> &Material {
+        static ERROR: std::sync::OnceLock<Material> = std::sync::OnceLock::new();
+        match id {
+            Some(MaterialId(i)) => &self.materials[i as usize],
+            None => ERROR.get_or_init(Material::error),
+        }
+    }
+
+    pub fn mesh(&self, id: MeshId) -> &Mesh {
+        &self.meshes[id.0 as usize]
+    }
+
+    pub fn texture(&self, id: TextureId) -> &Texture {
+        &self.textures[id.0 as usize]
+    }
+
+    /// Triangles as rendered: every instance counts its mesh's triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.instances
+            .iter()
+            .map(|i| self.mesh(i.mesh).triangle_count())
+            .sum()
+    }
+
+    /// Triangles stored: each unique mesh once.
+    pub fn unique_triangle_count(&self) -> usize {
+        self.meshes.iter().map(Mesh::triangle_count).sum()
+    }
+
+    /// True when some instance's material emits.
+    pub fn has_emissive_instance(&self) -> bool {
+        self.instances
+            .iter()
+            .any(|i| self.material(i.material).is_emissive())
+    }
+
+    /// Adds a material and returns its id.
+    pub fn add_material(&mut self, m: Material) -> MaterialId {
+        self.materials.push(m);
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    /// Adds a texture and returns its id.
+    pub fn add_texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        TextureId(self.textures.len() as u32 - 1)
+    }
+
+    /// Adds a mesh (not yet visible) and returns its id.
+    pub fn add_mesh(&mut self, m: Mesh) -> MeshId {
+        self.meshes.push(m);
+        MeshId(self.meshes.len() as u32 - 1)
+    }
+
+    /// Places mesh `mesh` with `material`.
+    pub fn add_instance(
+        &mut self,
+        mesh: MeshId,
+        material: Option<MaterialId>,
+        to_world: Transform,
+    ) {
+        self.instances.push(Instance {
+            mesh,
+            material,
+            to_world,
+        });
+    }
+
+    /// Adds a mesh already in world space and its one identity instance.
+    pub fn add_world_mesh(&mut self, m: Mesh, material: Option<MaterialId>) {
+        let id = self.add_mesh(m);
+        self.add_instance(id, material, Transform::default());
+    }
+}
