@@ -303,8 +303,11 @@ fn supported_plugins_load() {
             .all(|n| n.distance(Vec3::Z) < 1e-6)
     );
     let sphere = &s.meshes[1];
-    let c = sphere.positions.iter().sum::<Vec3>() / sphere.positions.len() as f32;
-    assert!(c.distance(Vec3::new(1.0, 2.0, 3.0)) < 1e-4);
+    let (lo, hi) = sphere.positions.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    assert!(((lo + hi) / 2.0).distance(Vec3::new(1.0, 2.0, 3.0)) < 1e-4);
     match &s.material(s.instances[1].material).bsdf {
         Bsdf::Conductor { alpha, eta, .. } => {
             assert_eq!(*alpha, 0.2.into());
@@ -676,4 +679,30 @@ fn pinhole_focus_distance_and_a_whole_film_crop_change_nothing() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("crop_width 8 crops the film"), "{e}");
+}
+
+#[test]
+fn disk_and_cylinder_are_placed_as_in_mitsuba() {
+    let s = load(
+        "<shape type=\"disk\"><transform name=\"to_world\"><scale value=\"2\"/></transform></shape>\n<shape type=\"cylinder\"><point name=\"p0\" value=\"1, 0, 0\"/><point name=\"p1\" value=\"1, 0, 2\"/><float name=\"radius\" value=\"0.5\"/></shape><emitter type=\"constant\"/>",
+    )
+    .unwrap();
+    let pi = std::f64::consts::PI;
+    assert!((s.meshes[0].area() / (4.0 * pi) - 1.0).abs() < 1e-5);
+    let cyl = &s.meshes[1];
+    assert!((cyl.area() / (2.0 * pi) - 1.0).abs() < 1e-5, "2π·r·length");
+    for p in &cyl.positions {
+        let r = Vec3::new(p.x - 1.0, p.y, 0.0).length();
+        assert!(
+            (r - 0.5).abs() < 1e-3 && (-1e-6..=2.0 + 1e-6).contains(&p.z),
+            "{p}"
+        );
+    }
+    // Along +z Mitsuba's frame is the identity: φ = 0 is +x, where u = 0.
+    let i = cyl
+        .positions
+        .iter()
+        .position(|p| (p.x - 1.5).abs() < 1e-3 && p.y.abs() < 1e-6 && p.z > 1.0)
+        .unwrap();
+    assert_eq!(cyl.uvs[i], glam::Vec2::new(0.0, 1.0));
 }

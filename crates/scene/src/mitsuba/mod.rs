@@ -14,6 +14,7 @@
 mod build;
 mod ply;
 mod presets;
+mod serialized;
 mod source;
 mod spectrum;
 mod xml;

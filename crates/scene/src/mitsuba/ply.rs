@@ -1,7 +1,9 @@
 //! Stanford PLY meshes, as Mitsuba's `ply` shape reads them: ASCII or binary little-endian;
-//! vertex positions `x y z`, optional normals `nx ny nz`, polygonal faces (`vertex_indices` or
-//! `vertex_index`, fan-triangulated). Other properties and elements are skipped.
-use glam::Vec3;
+//! vertex positions `x y z`, optional normals `nx ny nz`, texture coordinates (`u v`,
+//! `texture_u texture_v` or `s t`) and colours (`r g b` or `red green blue`, 8-bit ones scaled
+//! by 1/255), polygonal faces (`vertex_indices` or `vertex_index`, fan-triangulated). Other
+//! properties and elements are skipped.
+use glam::{Vec2, Vec3};
 use std::path::Path;
 
 #[derive(Debug)]
@@ -9,6 +11,10 @@ pub(crate) struct PlyMesh {
     pub positions: Vec<Vec3>,
     /// Empty unless every vertex has `nx ny nz`.
     pub normals: Vec<Vec3>,
+    /// Empty unless the vertices have texture coordinates.
+    pub uvs: Vec<Vec2>,
+    /// Empty unless the vertices have colours.
+    pub colors: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -127,6 +133,8 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
     let mut out = PlyMesh {
         positions: Vec::new(),
         normals: Vec::new(),
+        uvs: Vec::new(),
+        colors: Vec::new(),
         indices: Vec::new(),
     };
     let mut saw_vertices = false;
@@ -243,6 +251,24 @@ fn read_vertices(
             .iter()
             .position(|p| matches!(p, Prop::Scalar(name, _) if name == n))
     };
+    let both = |names: [&str; 2]| match names.map(find) {
+        [Some(a), Some(b)] => Some([a, b]),
+        _ => None,
+    };
+    let uv_idx = both(["u", "v"])
+        .or_else(|| both(["texture_u", "texture_v"]))
+        .or_else(|| both(["s", "t"]));
+    let rgb_idx = [["r", "g", "b"], ["red", "green", "blue"]]
+        .into_iter()
+        .find_map(|names| match names.map(find) {
+            [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+            _ => None,
+        });
+    // 8-bit colours are 0..255.
+    let rgb_scale = rgb_idx.map_or(1.0, |i| match &el.props[i[0]] {
+        Prop::Scalar(_, Scalar::U8) => 1.0 / 255.0,
+        _ => 1.0,
+    });
     let pos_idx = ["x", "y", "z"].map(find);
     if pos_idx.iter().any(Option::is_none) {
         return Err("the vertex element lacks x, y or z".into());
@@ -266,6 +292,13 @@ fn read_vertices(
         if has_normals {
             let n = nrm_idx.map(|i| vals[i.expect("checked")] as f32);
             out.normals.push(Vec3::from_array(n).normalize_or_zero());
+        }
+        if let Some(i) = uv_idx {
+            out.uvs.push(Vec2::from_array(i.map(|i| vals[i] as f32)));
+        }
+        if let Some(i) = rgb_idx {
+            out.colors
+                .push(Vec3::from_array(i.map(|i| (vals[i] * rgb_scale) as f32)));
         }
     }
     Ok(())
@@ -339,6 +372,20 @@ end_header
         assert_eq!(m.positions.len(), 4);
         assert_eq!(m.indices, vec![[0, 1, 2], [0, 2, 3]]);
         assert!(m.normals.is_empty());
+        assert!(m.uvs.is_empty(), "a lone `u` is not a texture coordinate");
+    }
+
+    #[test]
+    fn texture_coordinates_and_colours_under_each_name() {
+        for (u, v) in [("u", "v"), ("s", "t"), ("texture_u", "texture_v")] {
+            let ply = format!(
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float {u}\nproperty float {v}\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0 255 0 0\n1 0 0 1 0 0 255 0\n0 1 0 0.25 0.75 0 0 51\n3 0 1 2\n"
+            );
+            let m = parse_ply(ply.as_bytes()).unwrap();
+            assert_eq!(m.uvs[2], Vec2::new(0.25, 0.75), "{u} {v}");
+            assert_eq!(m.colors[0], Vec3::X);
+            assert!((m.colors[2].z - 0.2).abs() < 1e-6);
+        }
     }
 
     #[test]

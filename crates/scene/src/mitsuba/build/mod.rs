@@ -162,6 +162,8 @@ impl<'t> Builder<'t> {
                         o.describe()
                     ),
                 ),
+                // A <film>, <sampler> or <rfilter> that a sensor references.
+                _ if o.id.is_some() => {}
                 _ => self.error(
                     o.at,
                     format!(

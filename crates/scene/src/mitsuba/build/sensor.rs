@@ -266,6 +266,18 @@ impl<'t> Builder<'t> {
     }
 
     pub(super) fn integrator(&mut self, o: &'t Obj) {
+        // `moment` adds variance AOVs to the image of the integrator it wraps.
+        if o.kind == "moment" {
+            match self.nested(o, "integrator") {
+                Some(inner) => self.integrator(inner),
+                None => self.error(
+                    o.at,
+                    format!("{} needs one nested <integrator>", o.describe()),
+                ),
+            }
+            self.finish(o);
+            return;
+        }
         if o.kind != "path" {
             self.error(
                 o.at,

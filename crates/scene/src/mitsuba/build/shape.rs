@@ -1,88 +1,47 @@
-//! Shape plugins: obj, ply and the built-in rectangle, cube and sphere, with their BSDF and
-//! area emitter.
+//! Shape plugins: obj, ply, serialized and the built-in rectangle, cube, sphere, disk and
+//! cylinder (tessellated in `shapes.rs` with Mitsuba's UVs), with their BSDF and area emitter.
 use super::Builder;
 use super::BuiltBsdf;
 use crate::mitsuba::xml::{ChildKind, Obj};
-use crate::{Bsdf, Material, MaterialId, Mesh, Rgb, box_mesh, obj, quad_mesh, shapes, sphere_mesh};
+use crate::shapes::{self, ROUND_SEGMENTS};
+use crate::{Bsdf, Material, MaterialId, Mesh, Rgb, obj, quad_mesh};
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
-/// Icosphere level used for `sphere` shapes (5120 triangles, area 0.3 % under 4πr²).
-const SPHERE_SUBDIVISIONS: u32 = 4;
+const SHAPES: &str = "obj, ply, serialized, rectangle, cube, sphere, disk and cylinder";
 
-const SHAPES: &str = "obj, ply, rectangle, cube and sphere";
+/// A shape's meshes in its object space and the transform that comes before `to_world`
+/// (a sphere's centre and radius, a cylinder's end points and radius).
+struct Geometry {
+    meshes: Vec<Mesh>,
+    local: DMat4,
+    /// Flat shading asked for by the file itself (serialized meshes).
+    face_normals: bool,
+}
 
 impl<'t> Builder<'t> {
     pub(super) fn shape(&mut self, o: &'t Obj, index: usize) {
         let kind = o.kind.as_str();
-        if !matches!(kind, "obj" | "ply" | "rectangle" | "cube" | "sphere") {
+        if !matches!(
+            kind,
+            "obj" | "ply" | "serialized" | "rectangle" | "cube" | "sphere" | "disk" | "cylinder"
+        ) {
             self.unsupported(o, SHAPES);
             return;
         }
         let to_world = self.transform(o, "to_world").unwrap_or(DMat4::IDENTITY);
         let flip_normals = self.boolean(o, "flip_normals").unwrap_or(false);
-        let face_normals = if kind == "sphere" {
-            false
-        } else {
-            self.boolean(o, "face_normals").unwrap_or(false)
-        };
+        let analytic = matches!(kind, "sphere" | "disk" | "cylinder" | "rectangle");
+        let face_normals = !analytic && self.boolean(o, "face_normals").unwrap_or(false);
         let label = format!("shape[{index}] ({kind}, line {})", self.sources.line(o.at));
-        let mut meshes: Vec<Mesh> = match kind {
-            "obj" | "ply" => {
-                self.boolean(o, "flip_tex_coords");
-                let Some((file, at)) = self.string(o, "filename") else {
-                    self.error(
-                        o.at,
-                        format!("{} needs a <string name=\"filename\">", o.describe()),
-                    );
-                    self.finish(o);
-                    return;
-                };
-                let path = self.sources.resolve(file);
-                let loaded = if kind == "obj" {
-                    obj::load_obj(&path, Some(MaterialId(0))).map(|l| l.meshes)
-                } else {
-                    crate::mitsuba::ply::load_ply(&path).map(|p| {
-                        vec![Mesh {
-                            name: path.display().to_string(),
-                            positions: p.positions,
-                            normals: p.normals,
-                            indices: p.indices,
-                            ..Mesh::default()
-                        }]
-                    })
-                };
-                match loaded {
-                    Ok(m) => m,
-                    Err(e) => {
-                        self.error(at, e);
-                        Vec::new()
-                    }
-                }
-            }
-            "rectangle" => vec![quad_mesh(
-                Vec3::new(-1.0, -1.0, 0.0),
-                Vec3::new(2.0, 0.0, 0.0),
-                Vec3::new(0.0, 2.0, 0.0),
-            )],
-            "cube" => vec![box_mesh(Vec3::splat(-1.0), Vec3::splat(1.0))],
-            _ => {
-                let center = self.point(o, "center").unwrap_or(DVec3::ZERO);
-                let radius = match self.float(o, "radius") {
-                    Some(r) if r > 0.0 => r,
-                    Some(r) => {
-                        let at = self.prop(o, "radius").map_or(o.at, |p| p.at);
-                        self.error(at, format!("{}: radius {r} must be > 0", o.describe()));
-                        1.0
-                    }
-                    None => 1.0,
-                };
-                vec![sphere_mesh(
-                    center.as_vec3(),
-                    radius as f32,
-                    SPHERE_SUBDIVISIONS,
-                )]
-            }
-        };
+        // After an error, the BSDF and emitter are still checked.
+        let geometry = self.geometry(o, kind).unwrap_or(Geometry {
+            meshes: Vec::new(),
+            local: DMat4::IDENTITY,
+            face_normals: false,
+        });
+        let face_normals = face_normals || geometry.face_normals;
+        let to_world = to_world * geometry.local;
+        let mut meshes = geometry.meshes;
         let bsdf = self.shape_bsdf(o);
         let emission = self.shape_emission(o);
         self.finish(o);
@@ -138,8 +97,8 @@ impl<'t> Builder<'t> {
                 *p = m.transform_point3(*p);
             }
             // Mitsuba keeps the winding under a mirroring transform, so the geometric normal
-            // (and with it the emitting side) flips; so does its analytic sphere's normal.
-            let flip_shading = mirrored && kind == "sphere";
+            // (and with it the emitting side) flips; so do its analytic sphere's and cylinder's.
+            let flip_shading = mirrored && matches!(kind, "sphere" | "cylinder");
             for n in &mut mesh.normals {
                 *n = (normal_matrix * *n).normalize_or_zero();
                 if flip_shading {
@@ -148,7 +107,7 @@ impl<'t> Builder<'t> {
             }
             if face_normals {
                 mesh.normals.clear();
-            } else if mesh.normals.is_empty() && matches!(kind, "obj" | "ply") {
+            } else if mesh.normals.is_empty() && matches!(kind, "obj" | "ply" | "serialized") {
                 mesh.normals = smooth_normals(mesh);
             }
             if flip_normals {
@@ -158,6 +117,131 @@ impl<'t> Builder<'t> {
         for mesh in meshes {
             self.scene.add_world_mesh(mesh, material);
         }
+    }
+
+    /// The meshes of shape `o` (a `kind` known to [`Builder::shape`]); `None` after an error.
+    fn geometry(&mut self, o: &'t Obj, kind: &str) -> Option<Geometry> {
+        let plain = |meshes| Geometry {
+            meshes,
+            local: DMat4::IDENTITY,
+            face_normals: false,
+        };
+        Some(match kind {
+            "obj" | "ply" | "serialized" => self.mesh_file(o, kind)?,
+            "rectangle" => plain(vec![quad_mesh(
+                Vec3::new(-1.0, -1.0, 0.0),
+                Vec3::new(2.0, 0.0, 0.0),
+                Vec3::new(0.0, 2.0, 0.0),
+            )]),
+            "cube" => plain(vec![shapes::mitsuba_cube()]),
+            "disk" => plain(vec![shapes::disk(ROUND_SEGMENTS)]),
+            "sphere" => {
+                let center = self.point(o, "center").unwrap_or(DVec3::ZERO);
+                let radius = self.radius(o);
+                Geometry {
+                    local: DMat4::from_translation(center)
+                        * DMat4::from_scale(DVec3::splat(radius)),
+                    ..plain(vec![shapes::uv_sphere(ROUND_SEGMENTS)])
+                }
+            }
+            _ => {
+                let radius = self.radius(o);
+                let p0 = self.point(o, "p0").unwrap_or(DVec3::ZERO);
+                let p1 = self.point(o, "p1").unwrap_or(DVec3::Z);
+                let d = p1 - p0;
+                if d.length() < 1e-12 {
+                    self.error(o.at, format!("{}: p0 and p1 coincide", o.describe()));
+                    return None;
+                }
+                let (s, t) = mitsuba_frame(d.normalize());
+                let frame = DMat4::from_cols(
+                    s.extend(0.0),
+                    t.extend(0.0),
+                    d.normalize().extend(0.0),
+                    p0.extend(1.0),
+                );
+                Geometry {
+                    local: frame * DMat4::from_scale(DVec3::new(radius, radius, d.length())),
+                    ..plain(vec![shapes::cylinder(ROUND_SEGMENTS)])
+                }
+            }
+        })
+    }
+
+    /// `radius` (default 1), which must be positive.
+    fn radius(&mut self, o: &'t Obj) -> f64 {
+        match self.float(o, "radius") {
+            Some(r) if r > 0.0 => r,
+            Some(r) => {
+                let at = self.prop(o, "radius").map_or(o.at, |p| p.at);
+                self.error(at, format!("{}: radius {r} must be > 0", o.describe()));
+                1.0
+            }
+            None => 1.0,
+        }
+    }
+
+    /// An `obj`, `ply` or `serialized` file's meshes.
+    fn mesh_file(&mut self, o: &'t Obj, kind: &str) -> Option<Geometry> {
+        // Mitsuba flips OBJ texture coordinates by default, never PLY or serialized ones.
+        let flip_v = self.boolean(o, "flip_tex_coords").unwrap_or(kind == "obj");
+        let Some((file, at)) = self.string(o, "filename") else {
+            self.error(
+                o.at,
+                format!("{} needs a <string name=\"filename\">", o.describe()),
+            );
+            return None;
+        };
+        let path = self.sources.resolve(file);
+        let mut face_normals = false;
+        let loaded = match kind {
+            "obj" => obj::load_obj(&path, Some(MaterialId(0))).map(|l| l.meshes),
+            "ply" => crate::mitsuba::ply::load_ply(&path).map(|p| {
+                vec![Mesh {
+                    name: path.display().to_string(),
+                    positions: p.positions,
+                    normals: p.normals,
+                    uvs: p.uvs,
+                    colors: p.colors,
+                    indices: p.indices,
+                }]
+            }),
+            _ => {
+                let index = match self.int(o, "shape_index") {
+                    Some((i, _)) if i >= 0 => i as usize,
+                    Some((i, at)) => {
+                        self.error(
+                            at,
+                            format!("{}: shape_index {i} must be >= 0", o.describe()),
+                        );
+                        return None;
+                    }
+                    None => 0,
+                };
+                crate::mitsuba::serialized::load_serialized(&path, index).map(|s| {
+                    face_normals = s.face_normals;
+                    vec![s.mesh]
+                })
+            }
+        };
+        let mut meshes = match loaded {
+            Ok(m) => m,
+            Err(e) => {
+                self.error(at, e);
+                return None;
+            }
+        };
+        // The files' own UVs; `flip_tex_coords` turns v into 1 − v, as in Mitsuba.
+        if flip_v {
+            for uv in meshes.iter_mut().flat_map(|m| &mut m.uvs) {
+                uv.y = 1.0 - uv.y;
+            }
+        }
+        Some(Geometry {
+            meshes,
+            local: DMat4::IDENTITY,
+            face_normals,
+        })
     }
 
     /// The shape's BSDF: `Ok(None)` for none (Mitsuba's default diffuse), `Err` on errors.
@@ -252,4 +336,16 @@ fn smooth_normals(mesh: &Mesh) -> Vec<Vec3> {
     acc.iter()
         .map(|n| n.normalize_or_zero().as_vec3())
         .collect()
+}
+
+/// The tangents Mitsuba's `Frame3f(n)` gives a unit normal `n` (the branchless orthonormal
+/// basis of Duff et al. 2017), so that a cylinder's azimuth starts where Mitsuba's does.
+fn mitsuba_frame(n: DVec3) -> (DVec3, DVec3) {
+    let sign = 1f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        DVec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
 }

@@ -385,12 +385,14 @@ impl Parser {
             return;
         };
         let at = self.pos(el);
-        let dir = self
-            .sources
-            .path_at(at)
-            .parent()
-            .unwrap_or(Path::new("."))
-            .join(&value);
+        // The declaring file's folder first, then those of the files including it (Mitsuba's
+        // resolver holds them while an include is read), then the main file's search path.
+        let here = self.sources.path_at(at).to_path_buf();
+        let dir = std::iter::once(here.as_path())
+            .chain(self.stack.iter().rev().map(PathBuf::as_path))
+            .map(|f| f.parent().unwrap_or(Path::new(".")).join(&value))
+            .find(|d| d.is_dir())
+            .unwrap_or_else(|| self.sources.resolve(&value));
         if dir.is_dir() {
             self.sources.add_search_folder(dir);
         } else {
