@@ -51,7 +51,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
         median,
         samples as f64 / median / 1e6,
         bvh,
-        data.accel.triangle_count()
+        data.geometry.triangle_count()
     );
     Ok(())
 }

@@ -58,9 +58,8 @@ fn terrain(triangles: u32) -> Vec<InputTri> {
             for v in [[a, c, b], [a, d, c]] {
                 out.push(InputTri {
                     v,
-                    n: None,
-                    material: 0,
-                    light: u32::MAX,
+                    instance: 0,
+                    prim: out.len() as u32,
                 });
             }
         }

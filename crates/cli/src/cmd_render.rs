@@ -30,7 +30,7 @@ pub fn run(a: RenderArgs) -> Result<(), Failure> {
         r.settings.path.max_depth,
         st.seconds,
         st.samples as f64 / st.seconds.max(1e-9) / 1e6,
-        r.data.accel.triangle_count(),
+        r.data.geometry.triangle_count(),
         r.bvh_seconds
     );
     if st.invalid_samples > 0 {

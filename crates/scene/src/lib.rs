@@ -19,10 +19,8 @@ mod builtin;
 mod camera;
 mod camera_path;
 mod diagnostic;
-mod format;
 mod instance;
 mod light;
-mod load;
 mod material;
 mod mesh;
 mod mitsuba;
@@ -30,6 +28,7 @@ mod obj;
 mod scene;
 mod shapes;
 mod texture;
+mod toml_scene;
 mod transform;
 
 pub use crate::any::{is_mitsuba_path, load_scene_file};
@@ -39,7 +38,6 @@ pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, Path
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::instance::Instance;
 pub use crate::light::Light;
-pub use crate::load::{load_scene, load_scene_str};
 pub use crate::material::{Bsdf, Material, MaterialId, Param};
 pub use crate::mesh::{Mesh, MeshId};
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
@@ -47,6 +45,7 @@ pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::scene::{RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
+pub use crate::toml_scene::{load_scene, load_scene_str};
 pub use crate::transform::Transform;
 
 /// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).

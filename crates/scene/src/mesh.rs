@@ -17,8 +17,9 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Per-vertex shading normals, or empty (then the geometric normal is used).
     pub normals: Vec<Vec3>,
-    /// Per-vertex texture coordinates, or empty. Mitsuba's convention: (0, 0) is the bottom-left
-    /// corner of a bitmap, v grows upwards.
+    /// Per-vertex texture coordinates, or empty. Mitsuba's convention: (0, 0) is the top-left
+    /// corner of a bitmap and v grows down the image (OBJ's v, which grows upwards, is flipped
+    /// when read, as Mitsuba's `flip_tex_coords` does by default).
     pub uvs: Vec<Vec2>,
     /// Per-vertex colours (linear sRGB, read by `mesh_attribute` textures), or empty.
     pub colors: Vec<Rgb>,

@@ -44,7 +44,7 @@ pub struct Bitmap {
     pub to_uv: Affine2,
 }
 
-/// Decoded texels, linear, row-major from the **top** row of the file (so UV v = 1 is row 0).
+/// Decoded texels, linear, row-major from the **top** row of the file (UV v = 0 is row 0).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Image {
     pub width: u32,

@@ -94,7 +94,7 @@ pub fn stats_json(r: &StillResult) -> String {
         s.samples as f64 / s.seconds.max(1e-9),
         r.bvh_seconds,
         s.invalid_samples,
-        r.data.accel.triangle_count()
+        r.data.geometry.triangle_count()
     )
 }
 

@@ -1,9 +1,8 @@
-//! Closest-hit and shadow queries over every triangle of the scene, through an obvhs CWBVH.
+//! Closest-hit and shadow queries over a set of triangles, through an obvhs CWBVH.
 //!
 //! Triangles are copied into BVH order once (obvhs reports *slots*, not triangle indices), and
-//! per-slot shading data lives in parallel arrays, so the hot loop never looks anything up
-//! through `primitive_indices`.
-use eyeadapt_scene::Scene;
+//! per-slot ids live in a parallel array, so the hot loop never looks anything up through
+//! `primitive_indices`. [`crate::geometry`] puts these together into the scene's two levels.
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -13,49 +12,41 @@ use obvhs::rt_triangle::RtTriangle;
 use obvhs::triangle::Triangle;
 use std::time::Duration;
 
-/// Shading data of one BVH slot.
+/// What one BVH slot holds besides its triangle.
 #[derive(Clone, Copy, Debug)]
 pub struct TriInfo {
-    /// Unit geometric normal, following the triangle's winding (front side).
+    /// Unit geometric normal in the structure's space, following the winding (front side).
     pub ng: Vec3A,
-    /// Material index into the tracer's material table.
-    pub material: u32,
-    /// Index into [`crate::lights::LightSet::area`], or `u32::MAX` when not emissive.
-    pub light: u32,
-    /// Index into `Accel::normals`, or `u32::MAX` for flat shading.
-    pub normals: u32,
+    /// The [`InputTri::instance`] and [`InputTri::prim`] the slot was built from.
+    pub instance: u32,
+    pub prim: u32,
 }
 
+/// An obvhs CWBVH over triangles, in whatever space they were given (world space for a
+/// flattened scene, object space for one mesh of an instanced scene).
 pub struct Accel {
     bvh: CwBvh,
-    tris: Vec<RtTriangle>,
+    /// Triangles in BVH slot order.
+    pub(crate) tris: Vec<RtTriangle>,
     pub info: Vec<TriInfo>,
-    normals: Vec<[Vec3A; 3]>,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
     pub degenerate: usize,
     pub bounds_min: Vec3A,
     pub bounds_max: Vec3A,
 }
 
-/// Per-ray traversal state, reused across the rays of a path.
-pub struct RayScratch(Traversal);
-
-/// A surface hit.
+/// The closest hit in one [`Accel`]: distance and BVH slot.
 #[derive(Clone, Copy, Debug)]
-pub struct Hit {
+pub struct SlotHit {
     pub t: f32,
-    pub p: Vec3A,
-    pub ng: Vec3A,
-    pub ns: Vec3A,
-    pub info: TriInfo,
+    pub slot: u32,
 }
 
-/// One triangle as the scene gives it, with what the tracer needs to shade it.
+/// One triangle to build from, with the ids its hits report.
 pub struct InputTri {
     pub v: [Vec3A; 3],
-    pub n: Option<[Vec3A; 3]>,
-    pub material: u32,
-    pub light: u32,
+    pub instance: u32,
+    pub prim: u32,
 }
 
 /// The obvhs build preset for a scene of `n` triangles. Quality pays off only while the build
@@ -119,110 +110,72 @@ impl Accel {
             hi = Vec3A::ZERO;
         }
         let bvh = build_cwbvh_from_tris(&tris, params, &mut Duration::default());
-        let mut normals = Vec::new();
         let mut info = Vec::with_capacity(bvh.primitive_indices.len());
         let mut bvh_tris = Vec::with_capacity(bvh.primitive_indices.len());
         for &i in &bvh.primitive_indices {
             let t = kept[i as usize];
             bvh_tris.push(RtTriangle::from(&tris[i as usize]));
-            let ng = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).normalize();
-            let normals_idx = match t.n {
-                Some(n) if n.iter().all(|x| x.is_finite() && x.length_squared() > 0.5) => {
-                    normals.push(n);
-                    normals.len() as u32 - 1
-                }
-                _ => u32::MAX,
-            };
             info.push(TriInfo {
-                ng,
-                material: t.material,
-                light: t.light,
-                normals: normals_idx,
+                ng: (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).normalize(),
+                instance: t.instance,
+                prim: t.prim,
             });
         }
         Accel {
             bvh,
             tris: bvh_tris,
             info,
-            normals,
             degenerate,
             bounds_min: lo,
             bounds_max: hi,
         }
     }
 
-    /// Scratch space for [`Accel::intersect_with`] and [`Accel::unoccluded_with`]; one per
-    /// path saves re-initialising obvhs's traversal stack for every ray.
-    pub fn scratch(&self) -> RayScratch {
-        RayScratch(Traversal::default())
-    }
-
     /// Closest hit along `dir` (unit) from `origin`, within (0, tmax).
     #[inline]
-    pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<Hit> {
-        self.intersect_with(&mut self.scratch(), origin, dir, tmax)
+    pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<SlotHit> {
+        self.closest(&Ray::new(origin, dir, 0.0, tmax), &mut Traversal::default())
     }
 
-    /// [`Accel::intersect`] with caller-owned scratch space.
+    /// The closest hit of `ray` within its (tmin, tmax); `state` is scratch space, reused.
     #[inline]
-    pub fn intersect_with(
-        &self,
-        scratch: &mut RayScratch,
-        origin: Vec3A,
-        dir: Vec3A,
-        tmax: f32,
-    ) -> Option<Hit> {
-        let ray = Ray::new(origin, dir, 0.0, tmax);
-        let hit = crate::traverse::closest_hit(
-            &self.bvh,
-            &self.tris,
-            ray,
-            &mut scratch.0,
-            crate::triangle::intersect,
-        )?;
-        let slot = hit.primitive_id as usize;
-        let info = self.info[slot];
-        let p = origin + dir * hit.t;
-        let ns = if info.normals == u32::MAX {
-            info.ng
-        } else {
-            let Vec2 { x: u, y: v } = self.tris[slot].compute_barycentric(&ray);
-            let n = self.normals[info.normals as usize];
-            let ns = (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize_or_zero();
-            if ns == Vec3A::ZERO { info.ng } else { ns }
-        };
-        Some(Hit {
-            t: hit.t,
-            p,
-            ng: info.ng,
-            ns,
-            info,
+    pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
+        let tris = &self.tris;
+        crate::traverse::closest_hit(&self.bvh, *ray, state, |i, r| {
+            crate::triangle::intersect(&tris[i as usize], r)
+        })
+        .map(|h| SlotHit {
+            t: h.t,
+            slot: h.primitive_id,
         })
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
-        self.unoccluded_with(&mut self.scratch(), origin, dir, tmax)
+        self.unblocked(&Ray::new(origin, dir, 0.0, tmax), &mut Traversal::default())
     }
 
-    /// [`Accel::unoccluded`] with caller-owned scratch space.
+    /// True when no triangle blocks `ray` within its (tmin, tmax).
     #[inline]
-    pub fn unoccluded_with(
-        &self,
-        scratch: &mut RayScratch,
-        origin: Vec3A,
-        dir: Vec3A,
-        tmax: f32,
-    ) -> bool {
-        let ray = Ray::new(origin, dir, 0.0, tmax);
-        crate::traverse::unoccluded(
-            &self.bvh,
-            &self.tris,
-            ray,
-            &mut scratch.0,
-            crate::triangle::intersect,
-        )
+    pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
+        let tris = &self.tris;
+        crate::traverse::unoccluded(&self.bvh, *ray, state, |i, r| {
+            crate::triangle::intersect(&tris[i as usize], r)
+        })
+    }
+
+    /// Barycentric coordinates (weights of vertices 1 and 2) of `ray`'s hit with slot `slot`.
+    #[inline]
+    pub fn barycentric(&self, slot: u32, ray: &Ray) -> Vec2 {
+        self.tris[slot as usize].compute_barycentric(ray)
+    }
+
+    /// The vertices of slot `slot`, in the winding the triangle was given.
+    #[inline]
+    pub fn vertices(&self, slot: u32) -> [Vec3A; 3] {
+        let t = &self.tris[slot as usize];
+        [t.v0, t.v0 - t.e1, t.v0 + t.e2]
     }
 
     /// The obvhs structure itself (for diagnostics and the determinism tests).
@@ -234,49 +187,12 @@ impl Accel {
         self.info.len()
     }
 
-    /// Approximate heap size of the structure (BVH nodes, triangles, shading data).
+    /// Approximate heap size of the structure (BVH nodes, triangles, slot data).
     pub fn memory_bytes(&self) -> usize {
         self.bvh.nodes.len()
             * std::mem::size_of_val(&self.bvh.nodes[..].first().copied().unwrap_or_default())
             + self.bvh.primitive_indices.len() * 4
             + self.tris.len() * std::mem::size_of::<RtTriangle>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
-            + self.normals.len() * std::mem::size_of::<[Vec3A; 3]>()
     }
-}
-
-/// Flattens the scene's meshes into BVH input; `light_of` gives each emissive mesh triangle's
-/// index in the light set, in the same order as `LightSet::build` enumerates them.
-pub fn scene_triangles(
-    scene: &Scene,
-    material_index: impl Fn(Option<eyeadapt_scene::MaterialId>) -> u32,
-    emissive: impl Fn(u32) -> bool,
-) -> Vec<InputTri> {
-    let mut out = Vec::with_capacity(scene.triangle_count());
-    let mut next_light = 0u32;
-    for inst in &scene.instances {
-        let mesh = scene.mesh(inst.mesh);
-        let mat = material_index(inst.material);
-        let is_light = emissive(mat);
-        let m = inst.to_world;
-        for tri in &mesh.indices {
-            let v = tri.map(|i| Vec3A::from(m.point(mesh.positions[i as usize])));
-            let n = (!mesh.normals.is_empty())
-                .then(|| tri.map(|i| Vec3A::from(m.normal(mesh.normals[i as usize]))));
-            let area2 = (v[1] - v[0]).cross(v[2] - v[0]).length();
-            let light = if is_light && area2 > 0.0 && area2.is_finite() {
-                next_light += 1;
-                next_light - 1
-            } else {
-                u32::MAX
-            };
-            out.push(InputTri {
-                v,
-                n,
-                material: mat,
-                light,
-            });
-        }
-    }
-    out
 }

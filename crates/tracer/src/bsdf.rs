@@ -1,7 +1,8 @@
 //! BSDFs in the local shading frame (+z = shading normal, turned towards the viewer, so every
 //! surface is two-sided for reflection). `f` values exclude the cosine.
-use crate::microfacet::{Ggx, fresnel_conductor, fresnel_dielectric, internal_diffuse_reflectance};
-use eyeadapt_scene::{Bsdf as SceneBsdf, Param, Rgb};
+#[cfg(doc)]
+use crate::microfacet::internal_diffuse_reflectance;
+use crate::microfacet::{Ggx, fresnel_conductor, fresnel_dielectric};
 use glam::Vec3A;
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -75,51 +76,34 @@ fn reflect(wo: Vec3A, m: Vec3A) -> Vec3A {
 }
 
 impl Bsdf {
-    pub fn from_scene(b: &SceneBsdf) -> Bsdf {
-        let rgb = |p: Param<Rgb>| p.constant().unwrap_or(Rgb::splat(0.5));
-        let num = |p: Param<f32>| p.constant().unwrap_or(0.1);
-        match *b {
-            SceneBsdf::Diffuse { reflectance } => Bsdf::Diffuse {
-                reflectance: rgb(reflectance).into(),
-            },
-            SceneBsdf::Conductor {
-                alpha,
+    pub fn diffuse(reflectance: Vec3A) -> Bsdf {
+        Bsdf::Diffuse { reflectance }
+    }
+
+    /// A GGX conductor; `alpha` ≤ 1e-4 is a perfect mirror.
+    pub fn conductor(alpha: f32, eta: Vec3A, k: Vec3A, specular: Vec3A) -> Bsdf {
+        if alpha <= 1e-4 {
+            Bsdf::Mirror { eta, k, specular }
+        } else {
+            Bsdf::RoughConductor {
+                ggx: Ggx { alpha },
                 eta,
                 k,
-                specular_reflectance,
-            } => {
-                let (alpha, specular_reflectance) = (num(alpha), rgb(specular_reflectance));
-                if alpha <= 1e-4 {
-                    Bsdf::Mirror {
-                        eta: eta.into(),
-                        k: k.into(),
-                        specular: specular_reflectance.into(),
-                    }
-                } else {
-                    Bsdf::RoughConductor {
-                        ggx: Ggx { alpha },
-                        eta: eta.into(),
-                        k: k.into(),
-                        specular: specular_reflectance.into(),
-                    }
-                }
+                specular,
             }
-            SceneBsdf::Plastic {
-                reflectance,
-                alpha,
-                ior,
-            } => {
-                let (reflectance, alpha) = (rgb(reflectance), num(alpha));
-                let fdr = internal_diffuse_reflectance(ior);
-                let d_mean = (reflectance.x + reflectance.y + reflectance.z) / 3.0;
-                Bsdf::Plastic {
-                    diffuse: Vec3A::from(reflectance) / (1.0 - fdr),
-                    ggx: Ggx { alpha },
-                    eta: ior,
-                    inv_eta2: 1.0 / (ior * ior),
-                    spec_weight: 1.0 / (1.0 + d_mean),
-                }
-            }
+        }
+    }
+
+    /// The plastic over base `reflectance`; `fdr` is the internal diffuse reflectance of the
+    /// coating's `ior` ([`internal_diffuse_reflectance`], computed once per material).
+    pub fn plastic(reflectance: Vec3A, alpha: f32, ior: f32, fdr: f32) -> Bsdf {
+        let d_mean = (reflectance.x + reflectance.y + reflectance.z) / 3.0;
+        Bsdf::Plastic {
+            diffuse: reflectance / (1.0 - fdr),
+            ggx: Ggx { alpha },
+            eta: ior,
+            inv_eta2: 1.0 / (ior * ior),
+            spec_weight: 1.0 / (1.0 + d_mean),
         }
     }
 
@@ -254,32 +238,23 @@ mod tests {
     use crate::sampler::{SampleStream, hash_key};
 
     fn bsdfs() -> Vec<Bsdf> {
-        use eyeadapt_scene::{Bsdf as S, Rgb};
-        [
-            S::Diffuse {
-                reflectance: Rgb::new(0.8, 0.5, 0.2).into(),
-            },
-            S::Conductor {
-                alpha: 0.3.into(),
-                eta: Rgb::new(0.2, 0.9, 1.1),
-                k: Rgb::new(3.9, 2.4, 2.1),
-                specular_reflectance: Rgb::ONE.into(),
-            },
-            S::Conductor {
-                alpha: 0.05.into(),
-                eta: Rgb::splat(1.5),
-                k: Rgb::splat(3.0),
-                specular_reflectance: Rgb::ONE.into(),
-            },
-            S::Plastic {
-                reflectance: Rgb::new(0.5, 0.3, 0.1).into(),
-                alpha: 0.2.into(),
-                ior: 1.5,
-            },
+        use crate::microfacet::internal_diffuse_reflectance;
+        vec![
+            Bsdf::diffuse(Vec3A::new(0.8, 0.5, 0.2)),
+            Bsdf::conductor(
+                0.3,
+                Vec3A::new(0.2, 0.9, 1.1),
+                Vec3A::new(3.9, 2.4, 2.1),
+                Vec3A::ONE,
+            ),
+            Bsdf::conductor(0.05, Vec3A::splat(1.5), Vec3A::splat(3.0), Vec3A::ONE),
+            Bsdf::plastic(
+                Vec3A::new(0.5, 0.3, 0.1),
+                0.2,
+                1.5,
+                internal_diffuse_reflectance(1.5),
+            ),
         ]
-        .iter()
-        .map(Bsdf::from_scene)
-        .collect()
     }
 
     /// "Sample matches pdf and eval": the importance-sampled estimate of the albedo equals

@@ -137,7 +137,7 @@ pub fn eye_sensor_until(
             let k = (1.0 + cos) * 0.25;
             if k > 0.0
                 && (!settings.fov_only || view.in_frustum(basis, ls.wi))
-                && visible(scene, &mut scene.accel.scratch(), eye, ls.wi, ls.dist)
+                && visible(scene, &mut scene.geometry.scratch(), eye, ls.wi, ls.dist)
             {
                 let w = if ls.delta {
                     1.0
@@ -236,12 +236,12 @@ pub fn eye_direct_per_light(
     samples: u32,
     seed: u64,
 ) -> Vec<(Vec3A, f64)> {
-    use crate::lights::luminance;
+    use crate::emitter::luminance;
     let eye = Vec3A::from(view.position);
     let (_, _, axis) = view.basis();
     let mut out: Vec<(Vec3A, f64)> = Vec::new();
     let lights = &scene.lights;
-    let mut scratch = scene.accel.scratch();
+    let mut scratch = scene.geometry.scratch();
     let mut groups: Vec<(Vec3A, Vec<usize>, f32)> = Vec::new();
     for (i, a) in lights.area.iter().enumerate() {
         match groups.iter_mut().find(|g| g.0 == a.emission) {
@@ -290,8 +290,8 @@ pub fn eye_direct_per_light(
         let kern = (1.0 + wi.dot(axis)) * 0.25;
         let i = l.intensity(-wi);
         let colour = match *l {
-            crate::lights::DeltaLight::Point { intensity, .. }
-            | crate::lights::DeltaLight::Spot { intensity, .. } => intensity,
+            crate::emitter::DeltaLight::Point { intensity, .. }
+            | crate::emitter::DeltaLight::Spot { intensity, .. } => intensity,
         };
         let v = if kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
             (luminance(i) * kern / d2) as f64

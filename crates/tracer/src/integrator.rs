@@ -5,9 +5,9 @@
 //! number of path segments. 1 renders only directly visible emitters, 2 adds direct
 //! lighting, −1 is unlimited. Russian roulette starts once `rr_depth` segments have been
 //! traced, with survival probability min(max(throughput), 0.95).
-use crate::accel::RayScratch;
-use crate::bsdf::Bsdf;
-use crate::lights::{LightSet, luminance};
+use crate::emitter::luminance;
+use crate::geometry::RayScratch;
+use crate::lights::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
 use glam::Vec3A;
@@ -127,7 +127,7 @@ pub fn visible(
     } else {
         f32::INFINITY
     };
-    scene.accel.unoccluded_with(scratch, from, wi, tmax)
+    scene.geometry.unoccluded_with(scratch, from, wi, tmax)
 }
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
@@ -145,7 +145,7 @@ pub fn trace(
     aovs: bool,
 ) -> PathSample {
     let lights: &LightSet = &scene.lights;
-    let mut scratch = scene.accel.scratch();
+    let mut scratch = scene.geometry.scratch();
     let mut out = PathSample::default();
     let mut beta = Vec3A::ONE;
     // Factors applied to contributions that pass through the first vertex (AOVs).
@@ -170,7 +170,7 @@ pub fn trace(
     loop {
         s.start_group();
         let Some(hit) = scene
-            .accel
+            .geometry
             .intersect_with(&mut scratch, o, d, f32::INFINITY)
         else {
             if let Some(env) = lights.env {
@@ -187,20 +187,21 @@ pub fn trace(
             }
             break;
         };
+        let si = scene.geometry.interaction(o, d, &hit);
         let wo = -d;
-        let front = hit.ng.dot(wo) > 0.0;
+        let front = si.ng.dot(wo) > 0.0;
         if aovs && depth == 0 {
             out.hit = true;
-            out.depth = hit.t;
-            out.normal = hit.ns;
+            out.depth = si.t;
+            out.normal = si.ns;
         }
         // Emission (one-sided: front face only).
-        let emission = scene.emission[hit.info.material as usize];
-        if front && hit.info.light != u32::MAX {
+        if front && si.light != u32::MAX {
+            let emission = scene.materials.emission(si.material);
             let w = match prev {
                 Origin::Camera => 1.0,
                 Origin::Sampled { pdf } => {
-                    power_heuristic(pdf, lights.pdf_area(hit.info.light, prev_p, prev_n, hit.p))
+                    power_heuristic(pdf, lights.pdf_area(si.light, prev_p, prev_n, si.p))
                 }
             };
             let c = beta * emission * w;
@@ -216,22 +217,18 @@ pub fn trace(
             break;
         }
         // Shading frame on the viewer's side; every surface reflects on both sides.
-        let ng = if front { hit.ng } else { -hit.ng };
-        let ns = if hit.ns.dot(ng) < 0.0 {
-            -hit.ns
-        } else {
-            hit.ns
-        };
+        let ng = if front { si.ng } else { -si.ng };
+        let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
         let frame = Frame::new(ns);
         let wo_l = frame.to_local(wo);
-        let bsdf: &Bsdf = &scene.bsdfs[hit.info.material as usize];
+        let bsdf = scene.materials.bsdf(&si);
         let u_pick = s.next_1d();
         let u_lobe = s.next_1d();
         let u_rr = s.next_1d();
         let _ = s.next_1d();
         let u_bsdf = s.next_2d();
         let u_light_next = s.next_2d();
-        let p = offset(hit.p, ng);
+        let p = offset(si.p, ng);
 
         // Next-event estimation.
         if !bsdf.is_delta()

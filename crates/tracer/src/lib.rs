@@ -1,4 +1,5 @@
-//! The renderer: an obvhs CWBVH ([`Accel`]), stateless Owen-scrambled Sobol sampling
+//! The renderer: a two-level obvhs CWBVH ([`Geometry`] over per-mesh [`Accel`]s), materials
+//! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set, a path tracer with next-event estimation and MIS
 //! ([`trace`]), the film with its AOVs ([`render`] → [`Frame`]) and the eye-centred
 //! hemispherical sensor ([`eye_sensor`]).
@@ -9,26 +10,35 @@
 
 mod accel;
 mod bsdf;
+mod emitter;
 mod eye;
 mod film;
+mod geometry;
 mod integrator;
+mod interaction;
 mod light_pick;
 mod lights;
+mod material;
 mod microfacet;
 mod sampler;
 mod scene_data;
+mod texture;
 mod traverse;
 mod triangle;
 
-pub use crate::accel::{Accel, Hit, InputTri, RayScratch, TriInfo, build_params};
+pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
+pub use crate::emitter::luminance;
 pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
     sample_cardioid,
 };
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render};
+pub use crate::geometry::{Geometry, Hit, RayScratch};
 pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
-pub use crate::lights::{LightSet, luminance};
+pub use crate::interaction::SurfaceInteraction;
+pub use crate::lights::LightSet;
+pub use crate::material::Materials;
 pub use crate::sampler::{SampleStream, hash_key, mix64};
 pub use crate::scene_data::SceneData;
 pub use obvhs::BvhBuildParams;

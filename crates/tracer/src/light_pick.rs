@@ -16,7 +16,7 @@
 //!
 //! With one unit, or more than [`SPATIAL_MAX_UNITS`] (the cost per shading point grows with the
 //! count), units are chosen in proportion to their total power, the same everywhere.
-use crate::lights::{AreaTri, DeltaLight, Parallelogram, luminance};
+use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use glam::Vec3A;
 use std::f32::consts::PI;
 

@@ -1,87 +1,11 @@
 //! Every light source, for next-event estimation: emissive triangles, point and spot lights
-//! and the constant environment; [`crate::light_pick`] chooses which one a shading point samples.
-use crate::accel::InputTri;
+//! and the constant environment ([`crate::emitter`]); [`crate::light_pick`] chooses which one a
+//! shading point samples.
+use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::light_pick::{LightPicker, Unit};
 use eyeadapt_scene::Light;
 use glam::Vec3A;
 use std::f32::consts::PI;
-
-#[inline]
-pub fn luminance(c: Vec3A) -> f32 {
-    0.212_639 * c.x + 0.715_168_7 * c.y + 0.072_192_32 * c.z
-}
-
-#[derive(Clone, Copy, Debug)]
-pub struct AreaTri {
-    pub v0: Vec3A,
-    pub e1: Vec3A,
-    pub e2: Vec3A,
-    pub n: Vec3A,
-    pub area: f32,
-    pub emission: Vec3A,
-}
-
-/// Two emissive triangles that together form a parallelogram (a quad light split along a
-/// diagonal): sampled as one, `o + u·e1 + v·e2` for (u, v) in the unit square, so that a
-/// stratified 2-D sample stays stratified over the whole quad instead of being dealt out to
-/// its halves by the light-picking number.
-#[derive(Clone, Copy, Debug)]
-pub struct Parallelogram {
-    pub o: Vec3A,
-    pub e1: Vec3A,
-    pub e2: Vec3A,
-}
-
-#[derive(Clone, Copy, Debug)]
-pub enum DeltaLight {
-    Point {
-        position: Vec3A,
-        intensity: Vec3A,
-    },
-    Spot {
-        position: Vec3A,
-        direction: Vec3A,
-        intensity: Vec3A,
-        cos_cone: f32,
-        cos_falloff: f32,
-        cone: f32,
-        inv_transition: f32,
-    },
-}
-
-impl DeltaLight {
-    pub fn position(&self) -> Vec3A {
-        match *self {
-            DeltaLight::Point { position, .. } | DeltaLight::Spot { position, .. } => position,
-        }
-    }
-
-    /// Radiant intensity towards direction `w` (unit, leaving the light).
-    pub fn intensity(&self, w: Vec3A) -> Vec3A {
-        match *self {
-            DeltaLight::Point { intensity, .. } => intensity,
-            DeltaLight::Spot {
-                direction,
-                intensity,
-                cos_cone,
-                cos_falloff,
-                cone,
-                inv_transition,
-                ..
-            } => {
-                let c = direction.dot(w);
-                if c <= cos_cone {
-                    Vec3A::ZERO
-                } else if c >= cos_falloff {
-                    intensity
-                } else {
-                    // Linear in angle between the beam width and the cutoff (Mitsuba's `spot`).
-                    intensity * ((cone - c.clamp(-1.0, 1.0).acos()) * inv_transition)
-                }
-            }
-        }
-    }
-}
 
 /// A light sample as seen from a shading point.
 #[derive(Clone, Copy, Debug)]
@@ -111,27 +35,14 @@ pub struct LightSet {
 }
 
 impl LightSet {
+    /// The light set of the emissive triangles `area` (indexed as hits name them), the delta
+    /// lights and the environment.
     pub fn build(
-        tris: &[InputTri],
-        emission: &[Vec3A],
+        area: Vec<AreaTri>,
         lights: &[Light],
         env: Option<Vec3A>,
         scene_radius: f32,
     ) -> LightSet {
-        let mut area = Vec::new();
-        for t in tris.iter().filter(|t| t.light != u32::MAX) {
-            let e1 = t.v[1] - t.v[0];
-            let e2 = t.v[2] - t.v[0];
-            let c = e1.cross(e2);
-            area.push(AreaTri {
-                v0: t.v[0],
-                e1,
-                e2,
-                n: c.normalize(),
-                area: 0.5 * c.length(),
-                emission: emission[t.material as usize],
-            });
-        }
         let deltas: Vec<DeltaLight> = lights
             .iter()
             .map(|l| match *l {
@@ -400,7 +311,7 @@ mod tests {
 
     /// A square light of side `s` at height `h` above the origin, facing down, as two triangles
     /// split along either diagonal.
-    fn square_light(s: f32, h: f32, other_diagonal: bool) -> Vec<InputTri> {
+    fn square_light(s: f32, h: f32, other_diagonal: bool) -> Vec<[Vec3A; 3]> {
         let c = |x: f32, z: f32| Vec3A::new(x, h, z);
         let (p0, p1, p2, p3) = (
             c(-s / 2.0, -s / 2.0),
@@ -414,13 +325,12 @@ mod tests {
         } else {
             [[p0, p1, p2], [p0, p2, p3]]
         };
+        tris.to_vec()
+    }
+
+    fn white(tris: &[[Vec3A; 3]]) -> Vec<AreaTri> {
         tris.iter()
-            .map(|v| InputTri {
-                v: *v,
-                n: None,
-                material: 0,
-                light: 0,
-            })
+            .map(|v| AreaTri::new(*v, Vec3A::ONE).unwrap())
             .collect()
     }
 
@@ -469,11 +379,11 @@ mod tests {
         let mut under = square_light(1.0, -0.5, false);
         let mut away = square_light(1.0, 1.0, false);
         for t in under.iter_mut().chain(away.iter_mut()) {
-            t.v.swap(1, 2); // facing up
+            t.swap(1, 2); // facing up
         }
         tris.extend(under);
         tris.extend(away);
-        let lights = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        let lights = LightSet::build(white(&tris), &[], None, 10.0);
         assert!(lights.spatial_choice());
         assert_eq!(lights.parallelogram_count(), 4);
         let exact = square_irradiance(1.0, 0.7) + square_irradiance(1.0, 1.5);
@@ -491,16 +401,15 @@ mod tests {
         let exact = square_irradiance(s, h);
         for other in [false, true] {
             let tris = square_light(s, h, other);
-            let emission = [Vec3A::ONE];
-            let lights = LightSet::build(&tris, &emission, &[], None, 10.0);
+            let lights = LightSet::build(white(&tris), &[], None, 10.0);
             assert_eq!(lights.parallelogram_count(), 1, "diagonal variant {other}");
             let e = irradiance(&lights, 1024);
             assert!((e / exact - 1.0).abs() < 2e-3, "E {e} vs exact {exact}");
         }
         // Two triangles that are not a parallelogram stay triangles.
         let mut tris = square_light(s, h, false);
-        tris[1].v[2] += Vec3A::new(0.1, 0.0, 0.0);
-        let lights = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        tris[1][2] += Vec3A::new(0.1, 0.0, 0.0);
+        let lights = LightSet::build(white(&tris), &[], None, 10.0);
         assert_eq!(lights.parallelogram_count(), 0);
     }
 
@@ -509,7 +418,7 @@ mod tests {
         // The same 256 stratified samples per estimate, 64 independent estimates: pairing the
         // halves must not add variance (it removes the noise of dealing samples to halves).
         let tris = square_light(1.0, 0.3, false);
-        let paired = LightSet::build(&tris, &[Vec3A::ONE], &[], None, 10.0);
+        let paired = LightSet::build(white(&tris), &[], None, 10.0);
         let halves = LightSet::assemble(
             paired.area.clone(),
             vec![u32::MAX; 2],

@@ -15,7 +15,6 @@ use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::{Ray, RayHit};
-use obvhs::rt_triangle::RtTriangle;
 
 /// obvhs's lower bound on a child's entry distance (its `node::EPSILON`).
 const NODE_EPSILON: f32 = 0.0001;
@@ -86,17 +85,18 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     node.intersect_ray(ray, oct_inv4)
 }
 
-/// The closest triangle `ray` hits (slot and distance), if any.
+/// The closest primitive `ray` hits (slot and distance), if any. `prim_hit(slot, ray)` is the
+/// distance to primitive `slot` within the ray's current (tmin, tmax), or +∞: a triangle test,
+/// or for a top-level structure the closest hit inside one instance.
 ///
 /// `state` is scratch space, reset here: reusing one per path saves zeroing obvhs's 256-byte
 /// traversal stack for every ray (a `memset` call, 2 % of a Cornell-box render).
-#[inline]
+#[inline(always)]
 pub fn closest_hit(
     bvh: &CwBvh,
-    tris: &[RtTriangle],
     ray: Ray,
     state: &mut Traversal,
-    tri_hit: impl Fn(&RtTriangle, &Ray) -> f32,
+    mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> Option<RayHit> {
     if bvh.nodes.is_empty() {
         return None;
@@ -111,7 +111,7 @@ pub fn closest_hit(
         state,
         node_hits(node, &traverse_ray, state.oct_inv4),
         {
-            let t = tri_hit(&tris[state.primitive_id as usize], &traverse_ray);
+            let t = prim_hit(state.primitive_id, &traverse_ray);
             if t < traverse_ray.tmax {
                 hit.primitive_id = state.primitive_id;
                 hit.t = t;
@@ -122,14 +122,14 @@ pub fn closest_hit(
     (hit.t < ray.tmax).then_some(hit)
 }
 
-/// True when no triangle blocks `ray` within its (tmin, tmax); `state` as for [`closest_hit`].
-#[inline]
+/// True when no primitive blocks `ray` within its (tmin, tmax); `prim_hit` and `state` as for
+/// [`closest_hit`] (any finite distance below tmax blocks).
+#[inline(always)]
 pub fn unoccluded(
     bvh: &CwBvh,
-    tris: &[RtTriangle],
     ray: Ray,
     state: &mut Traversal,
-    tri_hit: impl Fn(&RtTriangle, &Ray) -> f32,
+    mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> bool {
     if bvh.nodes.is_empty() {
         return true;
@@ -139,7 +139,7 @@ pub fn unoccluded(
     let mut miss = true;
     'outer: {
         obvhs::traverse!(bvh, node, state, node_hits(node, &ray, state.oct_inv4), {
-            if tri_hit(&tris[state.primitive_id as usize], &ray) < ray.tmax {
+            if prim_hit(state.primitive_id, &ray) < ray.tmax {
                 miss = false;
                 break 'outer;
             }
@@ -255,8 +255,8 @@ mod tests {
                 0.0,
                 100.0,
             );
-            let hit = closest_hit(&bvh, &rt, ray, &mut Traversal::default(), |t, r| {
-                t.intersect(r)
+            let hit = closest_hit(&bvh, ray, &mut Traversal::default(), |i, r| {
+                rt[i as usize].intersect(r)
             });
             let t = hit.map(|h| h.t).unwrap_or(f32::INFINITY);
             assert!((t - 5.32).abs() < 1e-4, "dx = {dx:?}: t = {t}");

@@ -28,9 +28,8 @@ fn grid(k: usize) -> Vec<InputTri> {
                 for _ in 0..copies {
                     out.push(InputTri {
                         v,
-                        n: None,
-                        material: (i % 3) as u32,
-                        light: u32::MAX,
+                        instance: (i % 3) as u32,
+                        prim: out.len() as u32,
                     });
                 }
             }
@@ -74,8 +73,13 @@ fn assert_identical(name: &str, tris: &[InputTri], params: BvhBuildParams) {
             tree_hash(&one),
             tree_hash(&other)
         );
-        let materials = |a: &Accel| a.info.iter().map(|i| i.material).collect::<Vec<_>>();
-        assert_eq!(materials(&one), materials(&other), "{name}: shading data");
+        let ids = |a: &Accel| {
+            a.info
+                .iter()
+                .map(|i| (i.instance, i.prim))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(ids(&one), ids(&other), "{name}: slot ids");
     }
 }
 

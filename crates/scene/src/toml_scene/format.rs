@@ -1,5 +1,5 @@
 //! The TOML file as serde sees it: stage one of two-stage configuration (the raw shape of the
-//! file, every key known, locations kept with `Spanned`). `load.rs` validates it into [`Scene`].
+//! file, every key known, locations kept with `Spanned`). the sibling modules validate it into [`Scene`].
 //!
 //! Materials, shapes and lights are flat structs keyed by `type` rather than internally tagged
 //! enums, because serde buffers tagged enums and would drop the spans that error messages need.

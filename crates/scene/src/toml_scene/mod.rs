@@ -1,0 +1,284 @@
+//! The TOML scene format (`docs/scene-format.md`): stage one, `format.rs`, is the raw shape of
+//! the file as serde sees it; stage two, here and in the sibling files, validates it into a
+//! [`Scene`], collecting every problem.
+
+mod format;
+mod light;
+mod material;
+mod shape;
+
+use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
+use crate::{Camera, CameraPath, MaterialId, RenderDefaults, Rgb, Scene};
+use format::{CameraDef, SceneFile, V3};
+use glam::Vec3;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// Loads and validates a TOML scene file. OBJ paths are relative to the file's directory.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        diagnostics: vec![Diagnostic {
+            severity: Severity::Error,
+            file: path.to_path_buf(),
+            line: 0,
+            col: 0,
+            message: format!("cannot read scene file: {e}"),
+        }],
+    })?;
+    load_scene_str(&text, path)
+}
+
+/// Loads a scene from TOML text; `path` names it in messages and anchors relative paths.
+pub fn load_scene_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    let map = SourceMap { file: path, text };
+    let raw: SceneFile = toml::from_str(text).map_err(|e| SceneError {
+        diagnostics: vec![toml_error(&map, &e)],
+    })?;
+    let mut cx = Ctx {
+        map,
+        diags: Vec::new(),
+        dir: path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+    };
+    let scene = cx.scene(raw);
+    let (errors, warnings): (Vec<_>, Vec<_>) = cx
+        .diags
+        .into_iter()
+        .partition(|d| d.severity == Severity::Error);
+    if errors.is_empty() {
+        Ok(Scene { warnings, ..scene })
+    } else {
+        Err(SceneError {
+            diagnostics: errors.into_iter().chain(warnings).collect(),
+        })
+    }
+}
+
+pub(crate) fn toml_error(map: &SourceMap, e: &toml::de::Error) -> Diagnostic {
+    let offset = e.span().map_or(0, |s| s.start);
+    let message = e.message().trim().replace('\n', " ");
+    map.error(offset, message)
+}
+
+struct Ctx<'a> {
+    map: SourceMap<'a>,
+    diags: Vec<Diagnostic>,
+    dir: PathBuf,
+}
+
+impl Ctx<'_> {
+    fn error(&mut self, offset: usize, msg: impl Into<String>) {
+        let d = self.map.error(offset, msg);
+        self.diags.push(d);
+    }
+
+    fn warning(&mut self, offset: usize, msg: impl Into<String>) {
+        let d = self.map.warning(offset, msg);
+        self.diags.push(d);
+    }
+
+    /// A finite vector; `what` names the field in messages.
+    fn vec3(&mut self, v: &V3, what: &str) -> Vec3 {
+        let a = *v.get_ref();
+        if a.iter().any(|c| !c.is_finite()) {
+            self.error(
+                v.span().start,
+                format!("{what} {a:?} has a non-finite component"),
+            );
+            return Vec3::ZERO;
+        }
+        Vec3::from_array(a)
+    }
+
+    /// A finite, non-negative colour no larger than [`crate::MAX_COLOUR`].
+    fn colour(&mut self, v: &V3, what: &str) -> Rgb {
+        let c = self.vec3(v, what);
+        if let Err(problem) = crate::check_colour(c) {
+            self.error(
+                v.span().start,
+                format!("{what} {:?} {problem}", c.to_array()),
+            );
+            return Rgb::ZERO;
+        }
+        c
+    }
+
+    fn positive(&mut self, v: &Spanned<f32>, what: &str) -> f32 {
+        let x = *v.get_ref();
+        if !(x.is_finite() && x > 0.0) {
+            self.error(
+                v.span().start,
+                format!("{what} must be a finite number > 0, got {x}"),
+            );
+            return 1.0;
+        }
+        x
+    }
+
+    fn scene(&mut self, raw: SceneFile) -> Scene {
+        let mut scene = Scene {
+            source: self.map.file.to_path_buf(),
+            ..Scene::default()
+        };
+        scene.camera = raw.camera.as_ref().map(|c| self.camera(c));
+        if let Some(r) = &raw.render {
+            scene.render = self.render(r);
+        }
+        let mut names: HashMap<String, MaterialId> = HashMap::new();
+        for m in &raw.materials {
+            let name = m.get_ref().name.get_ref().clone();
+            if names.contains_key(&name) {
+                self.error(
+                    m.get_ref().name.span().start,
+                    format!("material \"{name}\" is defined twice"),
+                );
+                continue;
+            }
+            let mat = self.material(m.get_ref());
+            names.insert(name, scene.add_material(mat));
+        }
+        for (i, s) in raw.shapes.iter().enumerate() {
+            self.shape(i, s, &names, &mut scene);
+        }
+        for l in &raw.lights {
+            if let Some(light) = self.light(l) {
+                scene.lights.push(light);
+            }
+        }
+        if let Some(env) = &raw.environment {
+            scene.environment = Some(self.colour(&env.get_ref().radiance, "environment radiance"));
+        }
+        if let Some(p) = raw.camera_path {
+            scene.camera_path = self.camera_path(p);
+        }
+        let emitters = scene.has_emissive_instance();
+        if scene.meshes.is_empty() && scene.lights.is_empty() && scene.environment.is_none() {
+            self.error(
+                0,
+                "the scene is empty: it has no shapes, lights or environment",
+            );
+        } else if !emitters
+            && scene.lights.is_empty()
+            && scene.environment.is_none_or(|e| e.max_element() <= 0.0)
+        {
+            self.warning(0, "the scene has no light source (no emissive material, light or environment): it will render black");
+        }
+        scene
+    }
+
+    /// The `[camera_path]` table, deserialised and validated; problems at the table.
+    fn camera_path(&mut self, p: Spanned<toml::Value>) -> Option<CameraPath> {
+        let at = p.span().start;
+        let path: CameraPath = match p.into_inner().try_into() {
+            Ok(path) => path,
+            Err(e) => {
+                let e: toml::de::Error = e;
+                let msg = e.message().trim().replace('\n', " ");
+                self.error(at, format!("camera_path: {msg}"));
+                return None;
+            }
+        };
+        match path.validate() {
+            Ok(()) => Some(path),
+            Err(problems) => {
+                for problem in problems {
+                    self.error(at, problem.to_string());
+                }
+                None
+            }
+        }
+    }
+
+    fn camera(&mut self, c: &Spanned<CameraDef>) -> Camera {
+        let d = c.get_ref();
+        let position = self.vec3(&d.position, "camera position");
+        let look_at = self.vec3(&d.look_at, "camera look_at");
+        let up = d.up.as_ref().map_or(Vec3::Y, |u| self.vec3(u, "camera up"));
+        let fov = *d.fov_deg.get_ref();
+        if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
+            self.error(
+                d.fov_deg.span().start,
+                format!("fov_deg {fov} is outside (0, 180)"),
+            );
+        }
+        let gaze = look_at - position;
+        if gaze.length() <= 1e-6 * (1.0 + position.length()) {
+            self.error(
+                d.look_at.span().start,
+                "camera look_at equals its position: no view direction",
+            );
+        } else if gaze.normalize().cross(up.normalize_or_zero()).length() < 1e-4 {
+            self.error(
+                d.up.as_ref()
+                    .map_or(d.look_at.span().start, |u| u.span().start),
+                "camera up is parallel to the view direction (or zero)",
+            );
+        }
+        let mut size = |v: &Spanned<i64>, what: &str| -> u32 {
+            let x = *v.get_ref();
+            if !(1..=32768).contains(&x) {
+                self.error(
+                    v.span().start,
+                    format!("camera {what} {x} must be between 1 and 32768"),
+                );
+                return 1;
+            }
+            x as u32
+        };
+        let width = size(&d.width, "width");
+        let height = size(&d.height, "height");
+        Camera {
+            position,
+            look_at,
+            up,
+            fov_deg: fov,
+            width,
+            height,
+        }
+    }
+
+    fn render(&mut self, r: &format::RenderDef) -> RenderDefaults {
+        let mut out = RenderDefaults::default();
+        if let Some(s) = &r.spp {
+            if (1..=1 << 24).contains(s.get_ref()) {
+                out.spp = Some(*s.get_ref() as u32);
+            } else {
+                self.error(
+                    s.span().start,
+                    format!("spp {} must be between 1 and 16777216", s.get_ref()),
+                );
+            }
+        }
+        if let Some(s) = &r.max_depth {
+            if *s.get_ref() == -1 || (1..=1024).contains(s.get_ref()) {
+                out.max_depth = Some(*s.get_ref() as i32);
+            } else {
+                self.error(
+                    s.span().start,
+                    format!(
+                        "max_depth {} must be -1 (unlimited) or 1..=1024",
+                        s.get_ref()
+                    ),
+                );
+            }
+        }
+        if let Some(s) = &r.rr_depth {
+            if (1..=1024).contains(s.get_ref()) {
+                out.rr_depth = Some(*s.get_ref() as u32);
+            } else {
+                self.error(
+                    s.span().start,
+                    format!("rr_depth {} must be 1..=1024", s.get_ref()),
+                );
+            }
+        }
+        if let Some(s) = &r.seed {
+            if *s.get_ref() >= 0 {
+                out.seed = Some(*s.get_ref() as u64);
+            } else {
+                self.error(s.span().start, format!("seed {} must be >= 0", s.get_ref()));
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,276 @@
+//! `[[shapes]]` and their transforms.
+use super::Ctx;
+use super::format::{ShapeDef, TransformDef};
+use crate::{MaterialId, Mesh, Scene, Transform, box_mesh, obj, quad_mesh, shapes, sphere_mesh};
+use glam::{Mat4, Quat, Vec3};
+use std::collections::HashMap;
+use toml::Spanned;
+
+impl Ctx<'_> {
+    fn transform(&mut self, t: &Spanned<TransformDef>) -> Transform {
+        let d = t.get_ref();
+        let at = t.span().start;
+        if let Some(m) = d.matrix {
+            if d.translate.is_some() || d.rotate.is_some() || d.scale.is_some() {
+                self.error(
+                    at,
+                    "transform: `matrix` cannot be combined with translate/rotate/scale",
+                );
+            }
+            if m.iter().flatten().any(|x| !x.is_finite()) {
+                self.error(at, "transform matrix has a non-finite entry");
+                return Transform::default();
+            }
+            let mat = Mat4::from_cols_array_2d(&m).transpose();
+            if mat.determinant().abs() < 1e-12 {
+                self.error(at, "transform matrix is singular");
+                return Transform::default();
+            }
+            return Transform { matrix: mat };
+        }
+        let scale = match &d.scale {
+            None => Vec3::ONE,
+            Some(toml::Value::Float(s)) => Vec3::splat(*s as f32),
+            Some(toml::Value::Integer(s)) => Vec3::splat(*s as f32),
+            Some(toml::Value::Array(a)) if a.len() == 3 => {
+                let v: Vec<f32> = a
+                    .iter()
+                    .filter_map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64)))
+                    .map(|x| x as f32)
+                    .collect();
+                if v.len() == 3 {
+                    Vec3::new(v[0], v[1], v[2])
+                } else {
+                    self.error(
+                        at,
+                        "transform scale must be a number or an array of 3 numbers",
+                    );
+                    Vec3::ONE
+                }
+            }
+            Some(_) => {
+                self.error(
+                    at,
+                    "transform scale must be a number or an array of 3 numbers",
+                );
+                Vec3::ONE
+            }
+        };
+        if !scale.is_finite() || scale.abs().min_element() < 1e-12 {
+            self.error(
+                at,
+                format!("transform scale {scale:?} must be finite and non-zero"),
+            );
+            return Transform::default();
+        }
+        let rot = match d.rotate {
+            None => Quat::IDENTITY,
+            Some([x, y, z, deg]) => {
+                let axis = Vec3::new(x, y, z);
+                if !axis.is_finite() || axis.length() < 1e-12 || !deg.is_finite() {
+                    self.error(
+                        at,
+                        "transform rotate needs a non-zero finite axis and a finite angle",
+                    );
+                    Quat::IDENTITY
+                } else {
+                    Quat::from_axis_angle(axis.normalize(), deg.to_radians())
+                }
+            }
+        };
+        let tr = Vec3::from_array(d.translate.unwrap_or([0.0; 3]));
+        if !tr.is_finite() {
+            self.error(at, "transform translate is not finite");
+        }
+        Transform {
+            matrix: Mat4::from_scale_rotation_translation(scale, rot, tr),
+        }
+    }
+
+    pub(super) fn shape(
+        &mut self,
+        index: usize,
+        s: &Spanned<ShapeDef>,
+        names: &HashMap<String, MaterialId>,
+        scene: &mut Scene,
+    ) {
+        let d = s.get_ref();
+        let kind = d.kind.get_ref().as_str();
+        let material = match &d.material {
+            Some(n) => match names.get(n.get_ref()) {
+                Some(id) => Some(*id),
+                None => {
+                    self.warning(
+                        n.span().start,
+                        format!("unknown material \"{}\": rendering shapes[{index}] with the error material (magenta)", n.get_ref()),
+                    );
+                    None
+                }
+            },
+            None => None,
+        };
+        let allowed: &[&str] = match kind {
+            "quad" => &["corner", "u", "v"],
+            "box" => &["min", "max"],
+            "sphere" => &["center", "radius", "subdivisions"],
+            "obj" => &["file"],
+            other => {
+                self.error(
+                    d.kind.span().start,
+                    format!("unknown shape type \"{other}\" (expected obj, quad, box or sphere)"),
+                );
+                return;
+            }
+        };
+        let present = [
+            ("corner", d.corner.as_ref().map(|v| v.span().start)),
+            ("u", d.u.as_ref().map(|v| v.span().start)),
+            ("v", d.v.as_ref().map(|v| v.span().start)),
+            ("min", d.min.as_ref().map(|v| v.span().start)),
+            ("max", d.max.as_ref().map(|v| v.span().start)),
+            ("center", d.center.as_ref().map(|v| v.span().start)),
+            ("radius", d.radius.as_ref().map(|v| v.span().start)),
+            (
+                "subdivisions",
+                d.subdivisions.as_ref().map(|v| v.span().start),
+            ),
+            ("file", d.file.as_ref().map(|v| v.span().start)),
+        ];
+        for (key, at) in present {
+            if let Some(at) = at
+                && !allowed.contains(&key)
+            {
+                self.error(
+                    at,
+                    format!("shapes[{index}]: key `{key}` does not apply to type \"{kind}\""),
+                );
+            }
+        }
+        if kind != "obj" && d.material.is_none() {
+            self.error(
+                s.span().start,
+                format!("shapes[{index}] ({kind}) needs a `material`"),
+            );
+        }
+        let transform = d
+            .transform
+            .as_ref()
+            .map(|t| self.transform(t))
+            .unwrap_or_default();
+        let mut meshes: Vec<(Mesh, Option<MaterialId>)> = match kind {
+            "quad" => {
+                let corner = d
+                    .corner
+                    .as_ref()
+                    .map_or(Vec3::new(-1.0, -1.0, 0.0), |v| self.vec3(v, "corner"));
+                let u =
+                    d.u.as_ref()
+                        .map_or(Vec3::new(2.0, 0.0, 0.0), |v| self.vec3(v, "u"));
+                let v =
+                    d.v.as_ref()
+                        .map_or(Vec3::new(0.0, 2.0, 0.0), |x| self.vec3(x, "v"));
+                if u.cross(v).length() < 1e-12 {
+                    self.error(
+                        s.span().start,
+                        format!(
+                            "shapes[{index}] quad has zero area (u and v are parallel or zero)"
+                        ),
+                    );
+                }
+                vec![(quad_mesh(corner, u, v), material)]
+            }
+            "box" => {
+                let min = d
+                    .min
+                    .as_ref()
+                    .map_or(Vec3::splat(-1.0), |v| self.vec3(v, "min"));
+                let max = d
+                    .max
+                    .as_ref()
+                    .map_or(Vec3::splat(1.0), |v| self.vec3(v, "max"));
+                if (max - min).min_element() <= 0.0 {
+                    self.error(
+                        s.span().start,
+                        format!("shapes[{index}] box needs max > min on every axis"),
+                    );
+                }
+                vec![(box_mesh(min, max), material)]
+            }
+            "sphere" => {
+                let center = d
+                    .center
+                    .as_ref()
+                    .map_or(Vec3::ZERO, |v| self.vec3(v, "center"));
+                let radius = d
+                    .radius
+                    .as_ref()
+                    .map_or(1.0, |r| self.positive(r, "radius"));
+                let level = match &d.subdivisions {
+                    Some(n) if (0..=7).contains(n.get_ref()) => *n.get_ref() as u32,
+                    Some(n) => {
+                        self.error(
+                            n.span().start,
+                            format!("subdivisions {} must be 0..=7", n.get_ref()),
+                        );
+                        0
+                    }
+                    None => 4,
+                };
+                vec![(sphere_mesh(center, radius, level), material)]
+            }
+            _ => {
+                let Some(file) = &d.file else {
+                    self.error(
+                        s.span().start,
+                        format!("shapes[{index}] (obj) needs a `file`"),
+                    );
+                    return;
+                };
+                let path = self.dir.join(file.get_ref());
+                match obj::load_obj(&path, material) {
+                    Ok(loaded) => {
+                        for w in loaded.warnings {
+                            self.warning(file.span().start, w);
+                        }
+                        loaded
+                            .meshes
+                            .into_iter()
+                            .zip(loaded.materials)
+                            .map(|(m, mat)| match material {
+                                Some(_) => (m, material),
+                                None => (m, mat.map(|mm| scene.add_material(mm))),
+                            })
+                            .collect()
+                    }
+                    Err(e) => {
+                        self.error(file.span().start, e);
+                        return;
+                    }
+                }
+            }
+        };
+        for (m, _) in &mut meshes {
+            if m.name.is_empty() {
+                m.name = format!("shapes[{index}] ({kind})");
+            }
+            for p in &mut m.positions {
+                *p = transform.point(*p);
+            }
+            for n in &mut m.normals {
+                *n = transform.normal(*n);
+            }
+            if transform.flips_handedness() {
+                // Mirroring reverses winding; restore it so the front side stays where it was.
+                for t in &mut m.indices {
+                    t.swap(1, 2);
+                }
+            }
+            if d.flip_normals == Some(true) {
+                shapes::flip(m);
+            }
+        }
+        for (m, material) in meshes {
+            scene.add_world_mesh(m, material);
+        }
+    }
+}

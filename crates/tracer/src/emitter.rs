@@ -1,0 +1,99 @@
+//! What emits light, as the light set stores it: emissive triangles (and the parallelograms two
+//! of them may form), point and spot lights. Shared by [`crate::lights`] (sampling) and
+//! [`crate::light_pick`] (choosing which light a point samples).
+use glam::Vec3A;
+
+#[inline]
+pub fn luminance(c: Vec3A) -> f32 {
+    0.212_639 * c.x + 0.715_168_7 * c.y + 0.072_192_32 * c.z
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct AreaTri {
+    pub v0: Vec3A,
+    pub e1: Vec3A,
+    pub e2: Vec3A,
+    pub n: Vec3A,
+    pub area: f32,
+    pub emission: Vec3A,
+}
+
+/// Two emissive triangles that together form a parallelogram (a quad light split along a
+/// diagonal): sampled as one, `o + u·e1 + v·e2` for (u, v) in the unit square, so that a
+/// stratified 2-D sample stays stratified over the whole quad instead of being dealt out to
+/// its halves by the light-picking number.
+#[derive(Clone, Copy, Debug)]
+pub struct Parallelogram {
+    pub o: Vec3A,
+    pub e1: Vec3A,
+    pub e2: Vec3A,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub enum DeltaLight {
+    Point {
+        position: Vec3A,
+        intensity: Vec3A,
+    },
+    Spot {
+        position: Vec3A,
+        direction: Vec3A,
+        intensity: Vec3A,
+        cos_cone: f32,
+        cos_falloff: f32,
+        cone: f32,
+        inv_transition: f32,
+    },
+}
+
+impl DeltaLight {
+    pub fn position(&self) -> Vec3A {
+        match *self {
+            DeltaLight::Point { position, .. } | DeltaLight::Spot { position, .. } => position,
+        }
+    }
+
+    /// Radiant intensity towards direction `w` (unit, leaving the light).
+    pub fn intensity(&self, w: Vec3A) -> Vec3A {
+        match *self {
+            DeltaLight::Point { intensity, .. } => intensity,
+            DeltaLight::Spot {
+                direction,
+                intensity,
+                cos_cone,
+                cos_falloff,
+                cone,
+                inv_transition,
+                ..
+            } => {
+                let c = direction.dot(w);
+                if c <= cos_cone {
+                    Vec3A::ZERO
+                } else if c >= cos_falloff {
+                    intensity
+                } else {
+                    // Linear in angle between the beam width and the cutoff (Mitsuba's `spot`).
+                    intensity * ((cone - c.clamp(-1.0, 1.0).acos()) * inv_transition)
+                }
+            }
+        }
+    }
+}
+
+impl AreaTri {
+    /// The emitting triangle `v` (front side = (v1 − v0) × (v2 − v0)); `None` without area.
+    pub fn new(v: [Vec3A; 3], emission: Vec3A) -> Option<AreaTri> {
+        let e1 = v[1] - v[0];
+        let e2 = v[2] - v[0];
+        let c = e1.cross(e2);
+        let area = 0.5 * c.length();
+        (area > 0.0 && area.is_finite()).then(|| AreaTri {
+            v0: v[0],
+            e1,
+            e2,
+            n: c / (2.0 * area),
+            area,
+            emission,
+        })
+    }
+}

@@ -1,0 +1,139 @@
+//! The surface at a ray hit ([`SurfaceInteraction`]) and the per-vertex attributes of a mesh it
+//! is interpolated from.
+use eyeadapt_scene::{Mesh, Transform};
+use glam::{Vec2, Vec3A};
+
+/// What shading needs to know about a hit, in world space.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SurfaceInteraction {
+    pub t: f32,
+    pub p: Vec3A,
+    /// Unit geometric normal on the triangle's front side.
+    pub ng: Vec3A,
+    /// Unit shading normal (interpolated vertex normals, else `ng`); not yet turned to the viewer.
+    pub ns: Vec3A,
+    /// Texture coordinates: the mesh's, else the barycentrics (Mitsuba's convention).
+    pub uv: Vec2,
+    /// ∂p/∂u: from the UVs, else the edge v1 − v0.
+    pub dpdu: Vec3A,
+    /// Interpolated vertex colour (zero without vertex colours).
+    pub color: Vec3A,
+    pub instance: u32,
+    pub prim: u32,
+    /// Index into the tracer's material table.
+    pub material: u32,
+    /// Index into the light set's area lights, or `u32::MAX` when not emissive.
+    pub light: u32,
+}
+
+/// Per-vertex attributes of one mesh, in the space of its triangles.
+pub struct Attributes {
+    indices: Vec<[u32; 3]>,
+    normals: Vec<Vec3A>,
+    uvs: Vec<Vec2>,
+    colors: Vec<Vec3A>,
+}
+
+impl Attributes {
+    /// The mesh's attributes, with normals carried through `to_world` when given.
+    pub fn of(mesh: &Mesh, to_world: Option<&Transform>) -> Attributes {
+        let any = !(mesh.normals.is_empty() && mesh.uvs.is_empty() && mesh.colors.is_empty());
+        Attributes {
+            indices: if any {
+                mesh.indices.clone()
+            } else {
+                Vec::new()
+            },
+            normals: mesh
+                .normals
+                .iter()
+                .map(|&n| Vec3A::from(to_world.map_or(n, |m| m.normal(n))))
+                .collect(),
+            uvs: mesh.uvs.clone(),
+            colors: mesh.colors.iter().map(|&c| Vec3A::from(c)).collect(),
+        }
+    }
+
+    pub fn memory_bytes(&self) -> usize {
+        self.indices.len() * 12
+            + self.normals.len() * 16
+            + self.uvs.len() * 8
+            + self.colors.len() * 16
+    }
+
+    /// The interaction at barycentrics `b` (weights of vertices 1 and 2) of triangle `prim`,
+    /// whose vertices are `v` and geometric normal `ng`, all in this mesh's space. Position,
+    /// distance and ids are left for the caller.
+    #[inline]
+    pub fn interpolate(&self, prim: u32, b: Vec2, v: [Vec3A; 3], ng: Vec3A) -> SurfaceInteraction {
+        let w = [1.0 - b.x - b.y, b.x, b.y];
+        let idx = self.indices.get(prim as usize);
+        let ns = match idx {
+            Some(t) if !self.normals.is_empty() => {
+                let n = t.map(|k| self.normals[k as usize]);
+                let ok = n.iter().all(|x| x.is_finite() && x.length_squared() > 0.5);
+                let ns = (n[0] * w[0] + n[1] * w[1] + n[2] * w[2]).normalize_or_zero();
+                if ok && ns != Vec3A::ZERO { ns } else { ng }
+            }
+            _ => ng,
+        };
+        let (uv, dpdu) = match idx {
+            Some(t) if !self.uvs.is_empty() => {
+                let uv = t.map(|k| self.uvs[k as usize]);
+                (uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2], dpdu_of(v, uv))
+            }
+            _ => (b, v[1] - v[0]),
+        };
+        let color = match idx {
+            Some(t) if !self.colors.is_empty() => {
+                let c = t.map(|k| self.colors[k as usize]);
+                c[0] * w[0] + c[1] * w[1] + c[2] * w[2]
+            }
+            _ => Vec3A::ZERO,
+        };
+        SurfaceInteraction {
+            t: 0.0,
+            p: Vec3A::ZERO,
+            ng,
+            ns,
+            uv,
+            dpdu,
+            color,
+            instance: 0,
+            prim,
+            material: 0,
+            light: u32::MAX,
+        }
+    }
+}
+
+/// ∂p/∂u of the triangle `v` with texture coordinates `uv`; a degenerate parameterisation
+/// falls back to the edge v1 − v0.
+fn dpdu_of(v: [Vec3A; 3], uv: [Vec2; 3]) -> Vec3A {
+    let (d02, d12) = (uv[0] - uv[2], uv[1] - uv[2]);
+    let det = d02.x * d12.y - d02.y * d12.x;
+    if det.abs() < 1e-12 {
+        return v[1] - v[0];
+    }
+    let (p02, p12) = (v[0] - v[2], v[1] - v[2]);
+    (p02 * d12.y - p12 * d02.y) / det
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dpdu_follows_the_uv_parameterisation() {
+        // u runs along 2·x, v along z: ∂p/∂u = (0.5, 0, 0).
+        let v = [
+            Vec3A::ZERO,
+            Vec3A::new(1.0, 0.0, 0.0),
+            Vec3A::new(0.0, 0.0, 1.0),
+        ];
+        let uv = [Vec2::ZERO, Vec2::new(2.0, 0.0), Vec2::new(0.0, 1.0)];
+        assert!((dpdu_of(v, uv) - Vec3A::new(0.5, 0.0, 0.0)).length() < 1e-6);
+        // A collapsed parameterisation falls back to the first edge.
+        assert_eq!(dpdu_of(v, [Vec2::ZERO; 3]), v[1] - v[0]);
+    }
+}

@@ -1,0 +1,155 @@
+//! Texture lookups at a surface interaction: bitmaps (nearest or bilinear, with Mitsuba's wrap
+//! modes), checkerboards and interpolated vertex colours.
+use crate::interaction::SurfaceInteraction;
+use eyeadapt_scene::{FilterType, Image, Texture, WrapMode};
+use glam::{Vec2, Vec3A};
+
+/// The texture's colour at `si`.
+#[inline]
+pub fn eval(tex: &Texture, si: &SurfaceInteraction) -> Vec3A {
+    match tex {
+        Texture::Bitmap(b) => lookup(&b.image, b.to_uv.transform_point2(si.uv), b.filter, b.wrap),
+        Texture::Checkerboard {
+            color0,
+            color1,
+            to_uv,
+        } => {
+            let uv = to_uv.transform_point2(si.uv);
+            let upper = |x: f32| x - x.floor() > 0.5;
+            if upper(uv.x) == upper(uv.y) {
+                (*color0).into()
+            } else {
+                (*color1).into()
+            }
+        }
+        Texture::MeshAttribute { .. } => si.color,
+    }
+}
+
+/// Texel index `i` of a row or column of `n` texels under `wrap`.
+#[inline]
+fn wrap_index(i: i64, n: u32, wrap: WrapMode) -> usize {
+    let n = n as i64;
+    (match wrap {
+        WrapMode::Clamp => i.clamp(0, n - 1),
+        WrapMode::Repeat => i.rem_euclid(n),
+        WrapMode::Mirror => {
+            let k = i.rem_euclid(2 * n);
+            if k < n { k } else { 2 * n - 1 - k }
+        }
+    }) as usize
+}
+
+/// The image at `uv` ((0, 0) = top-left corner, (1, 1) = bottom-right). Bilinear filtering
+/// interpolates between texel centres (at (i + ½)/width), as Mitsuba does.
+pub fn lookup(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) -> Vec3A {
+    if img.texels.is_empty() || !uv.is_finite() {
+        return Vec3A::ZERO;
+    }
+    let (w, h) = (img.width, img.height);
+    let at = |x: i64, y: i64| -> Vec3A {
+        img.texels[wrap_index(y, h, wrap) * w as usize + wrap_index(x, w, wrap)].into()
+    };
+    let (x, y) = (uv.x as f64 * w as f64, uv.y as f64 * h as f64);
+    match filter {
+        FilterType::Nearest => at(x.floor() as i64, y.floor() as i64),
+        FilterType::Bilinear => {
+            let (x, y) = (x - 0.5, y - 0.5);
+            let (x0, y0) = (x.floor(), y.floor());
+            let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
+            let (x0, y0) = (x0 as i64, y0 as i64);
+            let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
+            let bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
+            top * (1.0 - fy) + bottom * fy
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use eyeadapt_scene::Rgb;
+
+    /// 2×2: red, green / blue, white (top row first).
+    fn image() -> Image {
+        Image {
+            width: 2,
+            height: 2,
+            texels: vec![
+                Rgb::new(1.0, 0.0, 0.0),
+                Rgb::new(0.0, 1.0, 0.0),
+                Rgb::new(0.0, 0.0, 1.0),
+                Rgb::new(1.0, 1.0, 1.0),
+            ],
+        }
+    }
+
+    fn close(a: Vec3A, b: [f32; 3]) -> bool {
+        (a - Vec3A::from(b)).abs().max_element() < 1e-6
+    }
+
+    #[test]
+    fn nearest_reads_the_texel_under_the_uv() {
+        let img = image();
+        let n = |u, v| lookup(&img, Vec2::new(u, v), FilterType::Nearest, WrapMode::Repeat);
+        assert!(close(n(0.25, 0.25), [1.0, 0.0, 0.0]), "top left");
+        assert!(close(n(0.75, 0.25), [0.0, 1.0, 0.0]), "top right");
+        assert!(close(n(0.25, 0.75), [0.0, 0.0, 1.0]), "bottom left");
+        assert!(
+            close(n(1.25, -0.25), [0.0, 0.0, 1.0]),
+            "repeat wraps both axes"
+        );
+    }
+
+    #[test]
+    fn bilinear_interpolates_between_texel_centres() {
+        let img = image();
+        let b = |u, v, w| lookup(&img, Vec2::new(u, v), FilterType::Bilinear, w);
+        // Texel centres read the texel exactly.
+        assert!(close(b(0.25, 0.25, WrapMode::Clamp), [1.0, 0.0, 0.0]));
+        // The image centre is the mean of the four texels.
+        assert!(close(b(0.5, 0.5, WrapMode::Clamp), [0.5, 0.5, 0.5]));
+        // Halfway from the top-left centre to the top-right one, a quarter of the way down:
+        // rows (red+green)/2 and (blue+white)/2, weighted 3/4 and 1/4 → (0.5, 0.5, 0) · ¾ +
+        // (0.5, 0.5, 1) · ¼.
+        assert!(close(b(0.5, 0.375, WrapMode::Clamp), [0.5, 0.5, 0.25]));
+        // At the left edge, clamp holds the border texels; repeat blends in the far column.
+        assert!(close(b(0.0, 0.25, WrapMode::Clamp), [1.0, 0.0, 0.0]));
+        assert!(close(b(0.0, 0.25, WrapMode::Repeat), [0.5, 0.5, 0.0]));
+        // Mirror reflects at the border: the texel left of column 0 is column 0 itself.
+        assert!(close(b(0.0, 0.25, WrapMode::Mirror), [1.0, 0.0, 0.0]));
+    }
+
+    #[test]
+    fn wrap_modes_fold_indices_as_mitsuba_does() {
+        let r: Vec<usize> = (-3..6)
+            .map(|i| wrap_index(i, 3, WrapMode::Repeat))
+            .collect();
+        assert_eq!(r, [0, 1, 2, 0, 1, 2, 0, 1, 2]);
+        let m: Vec<usize> = (-3..6)
+            .map(|i| wrap_index(i, 3, WrapMode::Mirror))
+            .collect();
+        assert_eq!(m, [2, 1, 0, 0, 1, 2, 2, 1, 0]);
+        let c: Vec<usize> = (-3..6).map(|i| wrap_index(i, 3, WrapMode::Clamp)).collect();
+        assert_eq!(c, [0, 0, 0, 0, 1, 2, 2, 2, 2]);
+    }
+
+    #[test]
+    fn checkerboard_alternates_by_quadrant() {
+        let tex = Texture::Checkerboard {
+            color0: Rgb::splat(0.4),
+            color1: Rgb::splat(0.2),
+            to_uv: glam::Affine2::from_scale(Vec2::splat(2.0)),
+        };
+        let mut si = SurfaceInteraction::default();
+        let mut at = |u, v| {
+            si.uv = Vec2::new(u, v);
+            eval(&tex, &si).x
+        };
+        // to_uv doubles the UV, so each quadrant of [0, 1]² holds a full 2×2 board.
+        assert_eq!(at(0.1, 0.1), 0.4);
+        assert_eq!(at(0.3, 0.1), 0.2);
+        assert_eq!(at(0.3, 0.3), 0.4);
+        assert_eq!(at(0.6, 0.1), 0.4);
+    }
+}
