@@ -1,8 +1,8 @@
 //! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
 //! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
 use eyeadapt_scene::{
-    Bsdf, Light, Param, Scene, SceneError, load_mitsuba, load_mitsuba_str, load_scene,
-    load_scene_file, mitsuba_vertical_fov,
+    Bsdf, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError, load_mitsuba,
+    load_mitsuba_str, load_scene, load_scene_file, mitsuba_vertical_fov,
 };
 use glam::Vec3;
 use std::collections::BTreeMap;
@@ -81,7 +81,16 @@ fn cornell_xml_matches_the_toml_camera_render_settings_and_light() {
     );
     assert!((xc.fov_deg - tc.fov_deg).abs() < 1e-4);
     assert_eq!((xc.width, xc.height), (tc.width, tc.height));
-    assert_eq!(x.render, t.render, "spp 64, max_depth 8, rr_depth 5");
+    // The XML names the box filter the TOML scene gets by default.
+    assert_eq!(x.render.filter, Some(PixelFilter::Box));
+    assert_eq!(
+        RenderDefaults {
+            filter: None,
+            ..x.render.clone()
+        },
+        t.render,
+        "spp 64, max_depth 8, rr_depth 5"
+    );
     let (xa, ta) = (emissive_area(&x), emissive_area(&t));
     assert!(
         (xa - 0.105 * 0.130).abs() < 1e-7 && (xa - ta).abs() < 1e-7,
@@ -361,10 +370,41 @@ fn approximations_are_warnings() {
     )
     .unwrap();
     let all: Vec<String> = s.warnings.iter().map(|w| w.to_string()).collect();
-    assert_eq!(all.len(), 3, "{all:#?}");
+    assert_eq!(all.len(), 2, "{all:#?}");
     assert!(all.iter().any(|w| w.contains("anisotropic")));
     assert!(all.iter().any(|w| w.contains("Beckmann")));
-    assert!(all.iter().any(|w| w.contains("Gaussian")));
+    // No <rfilter>: Mitsuba's default Gaussian.
+    assert_eq!(s.render.filter, Some(PixelFilter::GAUSSIAN));
+}
+
+#[test]
+fn reconstruction_filters_take_mitsubas_parameters() {
+    let filter = |rfilter: &str| {
+        load(&format!(
+            "<sensor type=\"perspective\"><film type=\"hdrfilm\">{rfilter}</film></sensor><emitter type=\"constant\"/>"
+        ))
+        .map(|s| s.render.filter)
+    };
+    assert_eq!(
+        filter("<rfilter type=\"box\"/>").unwrap(),
+        Some(PixelFilter::Box)
+    );
+    assert_eq!(
+        filter("<rfilter type=\"tent\"/>").unwrap(),
+        Some(PixelFilter::Tent { radius: 1.0 })
+    );
+    assert_eq!(
+        filter("<rfilter type=\"gaussian\"><float name=\"stddev\" value=\"0.25\"/></rfilter>")
+            .unwrap(),
+        Some(PixelFilter::Gaussian {
+            stddev: 0.25,
+            radius: 1.0
+        })
+    );
+    let e = filter("<rfilter type=\"lanczos\"/>")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("<rfilter type=\"lanczos\">"), "{e}");
 }
 
 /// Loads a fixture of `scenes/mitsuba-unsupported/` and checks that each `(needle, words)`
@@ -450,10 +490,6 @@ fn every_problem_of_a_file_is_reported_at_once() {
     expect_errors(
         "hair-and-spectra.xml",
         &[
-            (
-                "<rfilter type=\"gaussian\"",
-                &["<rfilter type=\"gaussian\">", "box"],
-            ),
             (
                 "<shape type=\"hair\"",
                 &["<shape type=\"hair\">", "unsupported"],

@@ -372,6 +372,7 @@ fn render_frame(
         path: job.path_settings,
         seed: job.seed,
         frame: f,
+        filter: job.scene.render.filter.unwrap_or_default(),
     };
     let frame = render(data, &view, &settings);
     let readings = estimate_all(

@@ -42,6 +42,7 @@ pub fn resolve(scene: &Scene, o: &StillOptions) -> Result<(View, RenderSettings)
         },
         seed: o.seed.or(scene.render.seed).unwrap_or(0),
         frame: 0,
+        filter: scene.render.filter.unwrap_or_default(),
     };
     Ok((view, settings))
 }

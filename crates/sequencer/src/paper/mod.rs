@@ -314,6 +314,7 @@ fn run_job(
             path: job.path_settings,
             seed: job.seed,
             frame: f,
+            filter: job.scene.render.filter.unwrap_or_default(),
         };
         let image = render(&data, &view, &settings);
         let mut readings = estimate_all(

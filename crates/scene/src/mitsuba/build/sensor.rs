@@ -1,7 +1,7 @@
 //! The sensor and what it nests (film, rfilter, sampler), and the integrator.
 use super::Builder;
-use crate::Camera;
 use crate::mitsuba::xml::{ChildKind, Obj, Value};
+use crate::{Camera, PixelFilter};
 use glam::{DMat4, DVec3};
 
 const SAMPLERS: &[&str] = &[
@@ -186,19 +186,20 @@ impl<'t> Builder<'t> {
         }
         self.boolean(f, "banner");
         self.boolean(f, "compensate");
-        // The box filter never reaches past its pixel, so the border changes nothing.
-        self.boolean(f, "sample_border");
-        match self.nested(f, "rfilter") {
-            Some(r) if r.kind == "box" => self.finish(r),
-            Some(r) => self.error(
-                r.at,
-                format!("unsupported {}: eyeadapt reconstructs with a box filter only (use <rfilter type=\"box\"/>)", r.describe()),
-            ),
-            None => self.warning(
-                f.at,
-                format!("{} has no <rfilter>: Mitsuba would use a Gaussian, eyeadapt uses a box filter (say <rfilter type=\"box\"/> to match)", f.describe()),
-            ),
+        let border = self.boolean(f, "sample_border").unwrap_or(false);
+        let filter = match self.nested(f, "rfilter") {
+            Some(r) => self.rfilter(r),
+            // Mitsuba's default.
+            None => Some(PixelFilter::GAUSSIAN),
+        };
+        if border && filter.is_some_and(|p| p != PixelFilter::Box) {
+            let at = self.prop(f, "sample_border").map_or(f.at, |p| p.at);
+            self.warning(
+                at,
+                format!("{}: sample_border is ignored (the pixels at the image's edge get only the samples inside it)", f.describe()),
+            );
         }
+        self.scene.render.filter = filter;
         self.finish(f);
         (width, height)
     }
@@ -225,6 +226,36 @@ impl<'t> Builder<'t> {
                 );
             }
         }
+    }
+
+    /// `<rfilter>`: box, tent (`radius`, default 1) or gaussian (`stddev`, default 0.5, reaching
+    /// 4 · stddev), as in Mitsuba.
+    fn rfilter(&mut self, r: &'t Obj) -> Option<PixelFilter> {
+        let filter = match r.kind.as_str() {
+            "box" => Some(PixelFilter::Box),
+            "tent" => Some(PixelFilter::Tent {
+                radius: self.float_in(r, "radius", 0.5..=16.0).unwrap_or(1.0) as f32,
+            }),
+            "gaussian" => {
+                let stddev = self.float_in(r, "stddev", 0.05..=4.0).unwrap_or(0.5) as f32;
+                Some(PixelFilter::Gaussian {
+                    stddev,
+                    radius: 4.0 * stddev,
+                })
+            }
+            _ => {
+                self.error(
+                    r.at,
+                    format!(
+                        "unsupported {}: eyeadapt reconstructs with box, tent or gaussian filters",
+                        r.describe()
+                    ),
+                );
+                return None;
+            }
+        };
+        self.finish(r);
+        filter
     }
 
     pub(super) fn sampler(&mut self, s: &'t Obj) {
