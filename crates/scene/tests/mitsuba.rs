@@ -1,8 +1,9 @@
 //! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
 //! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
 use eyeadapt_scene::{
-    Bsdf, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError, load_mitsuba,
-    load_mitsuba_str, load_scene, load_scene_file, mitsuba_vertical_fov,
+    Bsdf, FilterType, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError, Texture,
+    TextureId, WrapMode, load_mitsuba, load_mitsuba_str, load_scene, load_scene_file,
+    mitsuba_vertical_fov,
 };
 use glam::Vec3;
 use std::collections::BTreeMap;
@@ -442,12 +443,12 @@ fn expect_errors(file: &str, expected: &[(&str, &[&str])]) {
 }
 
 #[test]
-fn bitmap_texture_is_reported_at_the_texture() {
+fn a_missing_texture_file_is_reported_at_its_filename() {
     expect_errors(
         "textured-floor.xml",
         &[(
-            "<texture type=\"bitmap\"",
-            &["<texture type=\"bitmap\">", "unsupported"],
+            "textures/checker.png",
+            &["cannot read image", "checker.png"],
         )],
     );
 }
@@ -526,7 +527,6 @@ fn unknown_elements_attributes_and_references_are_located() {
     has("<medium", "<medium type=\"homogeneous\">");
     has("<lamp", "<lamp>");
     has("<emitter type=\"area\"", "nested in a <shape>");
-    has("checkerboard", "<texture type=\"checkerboard\">");
 }
 
 /// Writes `files` (name, content) into a fresh directory and loads the first one.
@@ -741,4 +741,88 @@ fn disk_and_cylinder_are_placed_as_in_mitsuba() {
         .position(|p| (p.x - 1.5).abs() < 1e-3 && p.y.abs() < 1e-6 && p.z > 1.0)
         .unwrap();
     assert_eq!(cyl.uvs[i], glam::Vec2::new(0.0, 1.0));
+}
+
+#[test]
+fn textures_fill_reflectances_and_roughness() {
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_raw(2, 1, vec![255, 0, 0, 0, 0, 255])
+        .unwrap()
+        .save(dir.path().join("t.png"))
+        .unwrap();
+    let text = xml(
+        "<texture type=\"bitmap\" id=\"tex\"><string name=\"filename\" value=\"t.png\"/><boolean name=\"raw\" value=\"true\"/><string name=\"filter_type\" value=\"nearest\"/><string name=\"wrap_mode\" value=\"clamp\"/><transform name=\"to_uv\"><scale x=\"2\" y=\"3\"/></transform></texture>\n<shape type=\"cube\"><bsdf type=\"diffuse\"><ref name=\"reflectance\" id=\"tex\"/></bsdf></shape>\n<shape type=\"cube\"><bsdf type=\"roughconductor\"><string name=\"distribution\" value=\"ggx\"/><ref name=\"alpha\" id=\"tex\"/><texture type=\"checkerboard\" name=\"specular_reflectance\"><rgb name=\"color0\" value=\"0.9\"/></texture></bsdf></shape>\n<shape type=\"cube\"><bsdf type=\"diffuse\"><texture type=\"mesh_attribute\" name=\"reflectance\"><string name=\"name\" value=\"vertex_color\"/></texture></bsdf></shape><emitter type=\"constant\"/>",
+    );
+    let path = dir.path().join("s.xml");
+    std::fs::write(&path, &text).unwrap();
+    let s = load_mitsuba(&path, &[]).unwrap();
+    assert_eq!(s.textures.len(), 3, "the referenced bitmap once");
+    let Texture::Bitmap(b) = &s.textures[0] else {
+        panic!("{:?}", s.textures[0])
+    };
+    assert!(b.raw && b.filter == FilterType::Nearest && b.wrap == WrapMode::Clamp);
+    assert_eq!(b.image.texels, vec![Vec3::X, Vec3::Z]);
+    assert_eq!(
+        b.to_uv.transform_point2(glam::Vec2::ONE),
+        glam::Vec2::new(2.0, 3.0)
+    );
+    let mat = |i: usize| s.material(s.instances[i].material).bsdf.clone();
+    assert_eq!(
+        mat(0),
+        Bsdf::Diffuse {
+            reflectance: Param::Texture(TextureId(0))
+        }
+    );
+    let Bsdf::Conductor {
+        alpha,
+        specular_reflectance,
+        ..
+    } = mat(1)
+    else {
+        panic!()
+    };
+    assert_eq!(alpha, Param::Texture(TextureId(0)));
+    assert_eq!(specular_reflectance, Param::Texture(TextureId(1)));
+    assert!(matches!(
+        s.textures[1],
+        Texture::Checkerboard { color0, color1, .. } if color0 == Vec3::splat(0.9) && color1 == Vec3::splat(0.2)
+    ));
+    assert!(matches!(s.textures[2], Texture::MeshAttribute { .. }));
+}
+
+#[test]
+fn bad_texture_files_and_textures_where_constants_belong_are_errors() {
+    let e = load("<shape type=\"cube\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"missing.png\"/></texture></bsdf></shape><emitter type=\"constant\"/>")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("test.xml:2:") && e.contains("missing.png"),
+        "{e}"
+    );
+    let e = load("<shape type=\"cube\"><emitter type=\"area\"><texture type=\"checkerboard\" name=\"radiance\"/></emitter></shape>")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("<texture type=\"checkerboard\">") && e.contains("here"),
+        "{e}"
+    );
+}
+
+#[test]
+fn instances_share_the_meshes_of_their_shapegroup() {
+    let s = load(
+        "<shape type=\"shapegroup\" id=\"g\"><shape type=\"cube\"><bsdf type=\"diffuse\"/></shape><shape type=\"sphere\"><float name=\"radius\" value=\"0.5\"/></shape></shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>\n<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\"><translate x=\"5\"/></transform></shape><emitter type=\"constant\"/>",
+    )
+    .unwrap();
+    assert_eq!(s.meshes.len(), 2, "the group's meshes once");
+    assert_eq!(s.instances.len(), 4);
+    assert_eq!(s.instances[0].mesh, s.instances[2].mesh);
+    assert_eq!(
+        s.instances[2].to_world.point(Vec3::ZERO),
+        Vec3::new(5.0, 0.0, 0.0)
+    );
+    let e = load("<shape type=\"instance\"><ref id=\"nope\"/></shape><emitter type=\"constant\"/>")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("test.xml:2:") && e.contains("nope"), "{e}");
 }

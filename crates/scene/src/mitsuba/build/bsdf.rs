@@ -2,7 +2,7 @@
 use super::Builder;
 use crate::mitsuba::presets::CONDUCTOR_PRESETS;
 use crate::mitsuba::xml::{ChildKind, Obj, Value};
-use crate::{Bsdf, Rgb};
+use crate::{Bsdf, Param, Rgb};
 
 const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic and twosided";
 /// Named IORs accepted by Mitsuba's `int_ior`/`ext_ior` (Mitsuba's `ior.h` table).
@@ -88,9 +88,7 @@ impl<'t> Builder<'t> {
             "twosided" => return self.twosided(o),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
-                Bsdf::Diffuse {
-                    reflectance: reflectance.into(),
-                }
+                Bsdf::Diffuse { reflectance }
             }
             "conductor" | "roughconductor" => self.conductor(o),
             "plastic" | "roughplastic" => self.plastic(o),
@@ -103,9 +101,13 @@ impl<'t> Builder<'t> {
         Some(BuiltBsdf { bsdf, name })
     }
 
-    /// A reflectance in [0, 1] (default 0.5).
-    pub(super) fn reflectance(&mut self, o: &'t Obj, name: &str) -> Rgb {
-        let c = self.colour(o, name).unwrap_or(Rgb::splat(0.5));
+    /// A reflectance in [0, 1] (default 0.5), or a texture.
+    pub(super) fn reflectance(&mut self, o: &'t Obj, name: &str) -> Param<Rgb> {
+        let c = match self.colour_param(o, name) {
+            Some(Param::Texture(t)) => return Param::Texture(t),
+            Some(Param::Const(c)) => c,
+            None => Rgb::splat(0.5),
+        };
         if c.max_element() > 1.0 {
             let at = self.prop(o, name).map_or(o.at, |p| p.at);
             self.error(
@@ -116,7 +118,7 @@ impl<'t> Builder<'t> {
                 ),
             );
         }
-        c
+        Param::Const(c)
     }
 
     /// eyeadapt is always two-sided, so `twosided` just unwraps its one BSDF.
@@ -154,6 +156,22 @@ impl<'t> Builder<'t> {
             name: o.id.clone().unwrap_or(b.name),
             bsdf: b.bsdf,
         })
+    }
+
+    /// The roughness of a `rough` plugin (a constant or a texture), 0 for the smooth one.
+    fn alpha(&mut self, o: &'t Obj, rough: &str) -> Param<f32> {
+        if o.kind != rough {
+            return Param::Const(0.0);
+        }
+        match self.float_texture(o, "alpha") {
+            Some(Some(t)) => {
+                // Still reads `distribution` and `sample_visible`.
+                self.roughness(o, 0.1);
+                Param::Texture(t)
+            }
+            Some(None) => Param::Const(0.1),
+            None => Param::Const(self.roughness(o, 0.1)),
+        }
     }
 
     /// `alpha` (or equal `alpha_u`/`alpha_v`) and `distribution` of rough plugins.
@@ -196,11 +214,7 @@ impl<'t> Builder<'t> {
     }
 
     pub(super) fn conductor(&mut self, o: &'t Obj) -> Bsdf {
-        let alpha = if o.kind == "roughconductor" {
-            self.roughness(o, 0.1)
-        } else {
-            0.0
-        };
+        let alpha = self.alpha(o, "roughconductor");
         let material = self.string(o, "material");
         let has_eta = self.prop(o, "eta").is_some() || self.prop(o, "k").is_some();
         let (eta, k) = match material {
@@ -238,12 +252,14 @@ impl<'t> Builder<'t> {
                 self.colour(o, "k").unwrap_or(Rgb::ONE),
             ),
         };
-        let specular_reflectance = self.colour(o, "specular_reflectance").unwrap_or(Rgb::ONE);
+        let specular_reflectance = self
+            .colour_param(o, "specular_reflectance")
+            .unwrap_or(Param::Const(Rgb::ONE));
         Bsdf::Conductor {
-            alpha: alpha.into(),
+            alpha,
             eta,
             k,
-            specular_reflectance: specular_reflectance.into(),
+            specular_reflectance,
         }
     }
 
@@ -276,11 +292,7 @@ impl<'t> Builder<'t> {
     }
 
     pub(super) fn plastic(&mut self, o: &'t Obj) -> Bsdf {
-        let alpha = if o.kind == "roughplastic" {
-            self.roughness(o, 0.1)
-        } else {
-            0.0
-        };
+        let alpha = self.alpha(o, "roughplastic");
         let reflectance = self.reflectance(o, "diffuse_reflectance");
         let int_ior = self.ior(o, "int_ior", 1.49);
         let ext_ior = self.ior(o, "ext_ior", 1.000277);
@@ -310,15 +322,18 @@ impl<'t> Builder<'t> {
                 format!("{}: nonlinear = true is ignored (eyeadapt's plastic is Mitsuba's linear model)", o.describe()),
             );
         }
-        if alpha < 0.01 {
+        if alpha.constant().is_some_and(|a| a < 0.01) {
             self.warning(
                 o.at,
                 format!("{}: a smooth coating is approximated by GGX alpha 0.01 (eyeadapt's plastic is always a microfacet coating)", o.describe()),
             );
         }
         Bsdf::Plastic {
-            reflectance: reflectance.into(),
-            alpha: alpha.max(0.01).into(),
+            reflectance,
+            alpha: match alpha {
+                Param::Const(a) => Param::Const(a.max(0.01)),
+                t => t,
+            },
             ior: ior as f32,
         }
     }

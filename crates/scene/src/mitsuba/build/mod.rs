@@ -14,6 +14,8 @@ mod emitter;
 mod params;
 mod sensor;
 mod shape;
+mod shapegroup;
+mod texture;
 
 use bsdf::BuiltBsdf;
 pub use sensor::vertical_fov;
@@ -27,6 +29,12 @@ pub(crate) struct Builder<'t> {
     bsdfs: HashMap<String, Option<BuiltBsdf>>,
     /// Ids of the objects being built, innermost last: a `<ref>` to one of them is a cycle.
     building: Vec<String>,
+    /// Built shapegroups by id: their meshes with materials (`None`: failed).
+    groups: HashMap<String, Option<shapegroup::Members>>,
+    /// Built textures by id (`None`: failed).
+    textures: HashMap<String, Option<crate::TextureId>>,
+    /// Decoded image files by (path, raw), shared by the textures that name them.
+    images: HashMap<(std::path::PathBuf, bool), std::sync::Arc<crate::Image>>,
     /// Ids of area emitters that some shape references.
     referenced_emitters: HashSet<&'t str>,
     /// Non-emissive material of each BSDF id, shared by every shape that references it.
@@ -44,6 +52,9 @@ impl<'t> Builder<'t> {
             bsdfs: HashMap::new(),
             building: Vec::new(),
             referenced_emitters: HashSet::new(),
+            textures: HashMap::new(),
+            groups: HashMap::new(),
+            images: HashMap::new(),
             shared: HashMap::new(),
             default_material: None,
             scene: Scene {
@@ -108,10 +119,18 @@ impl<'t> Builder<'t> {
                         self.bsdf(o);
                     }
                 },
+                // Built where a parameter references it.
+                "texture" if o.id.is_some() => {}
                 "texture" => self.texture(o),
+                // Built where an instance references it.
+                "shape" if o.kind == "shapegroup" && o.id.is_some() => {}
                 "shape" => {
                     let before = self.scene.meshes.len();
-                    self.shape(o, index);
+                    if o.kind == "instance" {
+                        self.instance(o);
+                    } else {
+                        self.shape(o, index);
+                    }
                     let ok = self.scene.meshes[before..]
                         .iter()
                         .all(|m| m.positions.iter().all(|p| p.is_finite()));

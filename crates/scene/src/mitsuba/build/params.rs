@@ -215,12 +215,15 @@ impl<'t> Builder<'t> {
     }
 
     /// Every texture plugin is unsupported: eyeadapt materials are constant.
+    /// A texture where eyeadapt takes constants only (or with nothing to fill).
     pub(super) fn texture(&mut self, t: &Obj) {
-        let hint = match t.kind.as_str() {
-            "bitmap" => " (image textures are not implemented: use a constant <rgb>)",
-            _ => " (eyeadapt materials are constant: use an <rgb>)",
-        };
-        self.error(t.at, format!("unsupported {}{hint}", t.describe()));
+        self.error(
+            t.at,
+            format!(
+                "unsupported {} here: eyeadapt takes textures for reflectances and roughness only (use a constant <rgb> or <float>)",
+                t.describe()
+            ),
+        );
     }
 
     pub(super) fn resolve(&mut self, id: &str, at: usize) -> Option<&'t Obj> {

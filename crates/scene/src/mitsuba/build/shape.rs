@@ -7,7 +7,8 @@ use crate::shapes::{self, ROUND_SEGMENTS};
 use crate::{Bsdf, Material, MaterialId, Mesh, Rgb, obj, quad_mesh};
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
-const SHAPES: &str = "obj, ply, serialized, rectangle, cube, sphere, disk and cylinder";
+const SHAPES: &str =
+    "obj, ply, serialized, rectangle, cube, sphere, disk, cylinder, shapegroup and instance";
 
 /// A shape's meshes in its object space and the transform that comes before `to_world`
 /// (a sphere's centre and radius, a cylinder's end points and radius).
@@ -19,14 +20,26 @@ struct Geometry {
 }
 
 impl<'t> Builder<'t> {
+    /// A top-level shape: its meshes, each placed once.
     pub(super) fn shape(&mut self, o: &'t Obj, index: usize) {
+        for (mesh, material) in self.shape_meshes(o, index) {
+            self.scene.add_world_mesh(mesh, material);
+        }
+    }
+
+    /// Shape `o`'s meshes in the space `to_world` maps it to, with their material.
+    pub(super) fn shape_meshes(
+        &mut self,
+        o: &'t Obj,
+        index: usize,
+    ) -> Vec<(Mesh, Option<MaterialId>)> {
         let kind = o.kind.as_str();
         if !matches!(
             kind,
             "obj" | "ply" | "serialized" | "rectangle" | "cube" | "sphere" | "disk" | "cylinder"
         ) {
             self.unsupported(o, SHAPES);
-            return;
+            return Vec::new();
         }
         let to_world = self.transform(o, "to_world").unwrap_or(DMat4::IDENTITY);
         let flip_normals = self.boolean(o, "flip_normals").unwrap_or(false);
@@ -114,9 +127,7 @@ impl<'t> Builder<'t> {
                 shapes::flip(mesh);
             }
         }
-        for mesh in meshes {
-            self.scene.add_world_mesh(mesh, material);
-        }
+        meshes.into_iter().map(|m| (m, material)).collect()
     }
 
     /// The meshes of shape `o` (a `kind` known to [`Builder::shape`]); `None` after an error.
