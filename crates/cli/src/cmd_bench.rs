@@ -27,6 +27,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
             },
             seed: run as u64,
             frame: 0,
+            filter: eyeadapt_scene::PixelFilter::Box,
         };
         let f = render(&data, &view, &s);
         samples = f.stats.samples;

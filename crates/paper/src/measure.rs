@@ -225,6 +225,7 @@ mod tests {
             },
             seed: 0,
             frame: 0,
+            filter: eyeadapt_scene::PixelFilter::Box,
         };
         let f = eyeadapt_tracer::render(&data, &view, &s);
         let patch = Region::from_material(&scene, "white patch", "cc19", 0.2);

@@ -21,16 +21,19 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 
 /// Decodes `path`; the message names the file and what is wrong with it.
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
+    // A FIFO or device would block or never end: only regular files are opened.
     if !path.is_file() {
         return Err(format!(
-            "texture file {} does not exist or is not a file",
+            "cannot read image {}: it does not exist or is not a regular file",
             path.display()
         ));
     }
     let reader = ImageReader::open(path)
         .and_then(|r| r.with_guessed_format())
         .map_err(|e| format!("cannot read texture file {}: {e}", path.display()))?;
-    if reader.format().is_none() {
+    use image::ImageFormat as F;
+    let known = |f: F| matches!(f, F::Png | F::Jpeg | F::OpenExr | F::Hdr | F::Bmp | F::Tga);
+    if !reader.format().is_some_and(known) {
         return Err(format!(
             "texture file {}: unknown image format (expected PNG, JPEG, BMP, TGA, HDR or EXR)",
             path.display()

@@ -13,6 +13,8 @@ pub struct RenderDefaults {
     pub max_depth: Option<i32>,
     pub rr_depth: Option<u32>,
     pub seed: Option<u64>,
+    /// The film's reconstruction filter (Mitsuba's `rfilter`); `None`: the renderer's box.
+    pub filter: Option<crate::PixelFilter>,
 }
 
 /// A loaded scene: object-space meshes placed by instances, materials whose parameters may

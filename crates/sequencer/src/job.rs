@@ -146,6 +146,7 @@ impl Job {
                 path: self.path_settings,
                 seed: self.seed,
                 frame: 0,
+                filter: self.scene.render.filter.unwrap_or_default(),
             },
             estimators: &self.estimators,
             config: &self.estimator_config,

@@ -3,9 +3,16 @@
 //! Each pixel is computed entirely by one task from its own deterministic sample streams and
 //! written into its slot, so the frame is bit-identical for any thread count. Samples whose
 //! radiance is NaN or infinite are counted and dropped (the pixel averages the rest).
+//!
+//! With a tent or Gaussian reconstruction filter ([`PixelFilter`]) the beauty image is the
+//! filter-weighted mean of the samples around each pixel, as in Mitsuba's film. Each row's
+//! samples are splatted into a private buffer covering the rows they reach; the buffers are
+//! then added into the image one row after another, in row order, so the sums (and bits) do
+//! not depend on the thread count. The AOVs stay per-pixel means.
 use crate::integrator::{Origin, PathSettings, trace};
 use crate::sampler::{SampleStream, hash_key};
 use crate::scene_data::SceneData;
+use eyeadapt_scene::PixelFilter;
 use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -67,13 +74,15 @@ impl View {
 }
 
 /// Sampling settings of one frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
     pub spp: u32,
     pub path: PathSettings,
     pub seed: u64,
     /// Frame number: part of every sample key, so frames get independent noise.
     pub frame: u32,
+    /// How samples become pixels of the beauty image.
+    pub filter: PixelFilter,
 }
 
 /// Counters of one render.
@@ -132,7 +141,11 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
     let (w, h) = (view.width as usize, view.height as usize);
     let basis = view.basis();
     let origin = Vec3A::from(view.position);
-    let render_pixel = |x: usize, y: usize| -> PixelAcc {
+    let reach = settings.filter.reach();
+    let splats = settings.filter != PixelFilter::Box;
+    // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
+    let band = 2 * reach + 1;
+    let render_pixel = |x: usize, y: usize, splat: &mut [(DVec3, f64)]| -> PixelAcc {
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
         let mut acc = PixelAcc::default();
         for i in 0..settings.spp {
@@ -156,6 +169,15 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
             }
             acc.valid += 1;
             acc.l += d3(p.l);
+            if splats {
+                splat_sample(
+                    splat,
+                    settings.filter,
+                    (w, reach),
+                    (x as f32 + j[0], j[1]),
+                    d3(p.l),
+                );
+            }
             acc.a += d3(p.achromatic);
             acc.e += d3(p.irradiance);
             acc.albedo += d3(p.albedo);
@@ -170,10 +192,28 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
         }
         acc
     };
-    let rows: Vec<Vec<PixelAcc>> = (0..h)
-        .into_par_iter()
-        .map(|y| (0..w).map(|x| render_pixel(x, y)).collect())
-        .collect();
+    let render_row = |y: usize| -> (Vec<PixelAcc>, Vec<(DVec3, f64)>) {
+        let mut splat = vec![(DVec3::ZERO, 0.0); if splats { band * w } else { 0 }];
+        let row = (0..w).map(|x| render_pixel(x, y, &mut splat)).collect();
+        (row, splat)
+    };
+    // Rows in blocks, so that at most a block's splat buffers exist at once (with the box
+    // filter there are none: one block).
+    let block_rows = if splats { 32 } else { h.max(1) };
+    let mut rows: Vec<Vec<PixelAcc>> = Vec::with_capacity(h);
+    let mut beauty = vec![(DVec3::ZERO, 0.0); if splats { w * h } else { 0 }];
+    for start in (0..h).step_by(block_rows) {
+        let block: Vec<_> = (start..(start + block_rows).min(h))
+            .into_par_iter()
+            .map(render_row)
+            .collect();
+        for (i, (row, splat)) in block.into_iter().enumerate() {
+            if splats {
+                add_splats(&mut beauty, &splat, (w, h), start + i, reach);
+            }
+            rows.push(row);
+        }
+    }
     let mut f = Frame {
         width: w,
         height: h,
@@ -189,13 +229,22 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
     ] {
         v.reserve_exact(n);
     }
-    for acc in rows.iter().flatten() {
+    for (i, acc) in rows.iter().flatten().enumerate() {
         let k = if acc.valid > 0 {
             1.0 / acc.valid as f64
         } else {
             0.0
         };
-        f.rgb.push(f3(acc.l * k));
+        if splats {
+            let (sum, weight) = beauty[i];
+            f.rgb.push(f3(if weight > 0.0 {
+                sum / weight
+            } else {
+                DVec3::ZERO
+            }));
+        } else {
+            f.rgb.push(f3(acc.l * k));
+        }
         f.achromatic.push(f3(acc.a * k));
         f.irradiance.push(f3(acc.e * k));
         f.albedo.push(f3(acc.albedo * k));
@@ -212,4 +261,79 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
     }
     f.stats.seconds = start.elapsed().as_secs_f64();
     f
+}
+
+/// Adds one sample at `(x, dy)` (x in image pixels, dy in [0, 1) within its row) to the row's
+/// splat buffer (`band` rows of `w`, the sample's own row in the middle).
+fn splat_sample(
+    splat: &mut [(DVec3, f64)],
+    filter: PixelFilter,
+    (w, reach): (usize, usize),
+    (x, dy): (f32, f32),
+    l: DVec3,
+) {
+    let px = x.floor() as i64;
+    for oy in -(reach as i64)..=reach as i64 {
+        // Pixel centre of row (own row + oy) minus the sample, in pixels.
+        let wy = filter.eval(oy as f32 + 0.5 - dy);
+        if wy <= 0.0 {
+            continue;
+        }
+        let line = (oy + reach as i64) as usize * w;
+        for ox in -(reach as i64)..=reach as i64 {
+            let col = px + ox;
+            if col < 0 || col >= w as i64 {
+                continue;
+            }
+            let wx = filter.eval(col as f32 + 0.5 - x);
+            let weight = (wx * wy) as f64;
+            if weight > 0.0 {
+                let cell = &mut splat[line + col as usize];
+                cell.0 += l * weight;
+                cell.1 += weight;
+            }
+        }
+    }
+}
+
+/// Adds row `y`'s splat buffer into the image, dropping what falls outside it.
+fn add_splats(
+    image: &mut [(DVec3, f64)],
+    splat: &[(DVec3, f64)],
+    (w, h): (usize, usize),
+    y: usize,
+    reach: usize,
+) {
+    for (k, line) in splat.chunks_exact(w.max(1)).enumerate() {
+        let Some(ty) = (y + k).checked_sub(reach).filter(|ty| *ty < h) else {
+            continue;
+        };
+        for (dst, src) in image[ty * w..(ty + 1) * w].iter_mut().zip(line) {
+            dst.0 += src.0;
+            dst.1 += src.1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tent_splat_lands_on_the_neighbours_by_hand() {
+        // Three pixels wide, reach 1; a sample at x = 1.25 in the middle of its row.
+        let tent = PixelFilter::Tent { radius: 1.0 };
+        let mut splat = vec![(DVec3::ZERO, 0.0); 3 * 3];
+        splat_sample(&mut splat, tent, (3, 1), (1.25, 0.5), DVec3::splat(2.0));
+        // Rows above and below: |offset| = 1, weight 0. Own row: 1 − 0.75, 1 − 0.25, 0.
+        let weights: Vec<f64> = splat.iter().map(|c| c.1).collect();
+        assert_eq!(weights, [0.0, 0.0, 0.0, 0.25, 0.75, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(splat[4].0, DVec3::splat(1.5));
+        // Into a 3 × 2 image as row 0: the band's first row falls above the image.
+        let mut image = vec![(DVec3::ZERO, 0.0); 3 * 2];
+        splat[7] = (DVec3::ONE, 0.5);
+        add_splats(&mut image, &splat, (3, 2), 0, 1);
+        assert_eq!(image[1], (DVec3::splat(1.5), 0.75));
+        assert_eq!(image[4], (DVec3::ONE, 0.5));
+    }
 }

@@ -83,6 +83,7 @@ fn instances_render_the_flattened_image() {
         path: PathSettings::default(),
         seed: 3,
         frame: 0,
+        filter: eyeadapt_scene::PixelFilter::Box,
     };
     let (a, b) = (scene(true), scene(false));
     let (da, db) = (SceneData::new(&a), SceneData::new(&b));

@@ -14,10 +14,14 @@
 mod build;
 mod ply;
 mod presets;
+mod serialized;
+mod source;
+mod spectrum;
 mod xml;
 
 use crate::Scene;
-use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
+use crate::diagnostic::{Diagnostic, SceneError, Severity};
+use source::Sources;
 use std::path::Path;
 
 pub use build::vertical_fov as mitsuba_vertical_fov;
@@ -43,18 +47,18 @@ pub fn load_mitsuba_str(
     path: &Path,
     overrides: &[(&str, &str)],
 ) -> Result<Scene, SceneError> {
-    let map = SourceMap { file: path, text };
-    let mut parser = xml::Parser::new(&map, overrides);
+    let mut parser = xml::Parser::new(Sources::new(path, text), overrides);
     let doc = parser.parse(text);
     let mut diags = std::mem::take(&mut parser.diags);
+    let sources = parser.sources;
     let scene = doc.as_ref().map(|doc| {
-        let mut b = build::Builder::new(&map);
-        b.build(&doc.objects);
+        let mut b = build::Builder::new(&sources);
+        b.build(doc);
         diags.append(&mut b.diags);
         b.scene
     });
     // In file order, whichever stage found them.
-    diags.sort_by_key(|d| (d.line, d.col));
+    diags.sort_by_key(|d| (d.file != path, d.file.clone(), d.line, d.col));
     let (errors, warnings): (Vec<_>, Vec<_>) = diags
         .into_iter()
         .partition(|d| d.severity == Severity::Error);

@@ -1,7 +1,9 @@
 //! Stanford PLY meshes, as Mitsuba's `ply` shape reads them: ASCII or binary little-endian;
-//! vertex positions `x y z`, optional normals `nx ny nz`, polygonal faces (`vertex_indices` or
-//! `vertex_index`, fan-triangulated). Other properties and elements are skipped.
-use glam::Vec3;
+//! vertex positions `x y z`, optional normals `nx ny nz`, texture coordinates (`u v`,
+//! `texture_u texture_v` or `s t`) and colours (`r g b` or `red green blue`, 8-bit ones scaled
+//! by 1/255), polygonal faces (`vertex_indices` or `vertex_index`, fan-triangulated). Other
+//! properties and elements are skipped.
+use glam::{Vec2, Vec3};
 use std::path::Path;
 
 #[derive(Debug)]
@@ -9,6 +11,10 @@ pub(crate) struct PlyMesh {
     pub positions: Vec<Vec3>,
     /// Empty unless every vertex has `nx ny nz`.
     pub normals: Vec<Vec3>,
+    /// Empty unless the vertices have texture coordinates.
+    pub uvs: Vec<Vec2>,
+    /// Empty unless the vertices have colours.
+    pub colors: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -107,6 +113,62 @@ pub(crate) fn load_ply(path: &Path) -> Result<PlyMesh, String> {
 }
 
 pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
+    let (header, body_start) = split_header(bytes)?;
+    let (format, elements) = parse_header(header)?;
+    let mut body = match format.as_str() {
+        "ascii" => Body::Ascii(
+            std::str::from_utf8(&bytes[body_start..])
+                .map_err(|_| "the ASCII body is not text")?
+                .split_ascii_whitespace(),
+        ),
+        "binary_little_endian" => Body::Binary(bytes, body_start),
+        "binary_big_endian" => {
+            return Err(
+                "binary_big_endian PLY is not supported (convert it to binary_little_endian or ascii)"
+                    .into(),
+            );
+        }
+        f => return Err(format!("unknown format \"{f}\"")),
+    };
+    let mut out = PlyMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        uvs: Vec::new(),
+        colors: Vec::new(),
+        indices: Vec::new(),
+    };
+    let mut saw_vertices = false;
+    for el in &elements {
+        match el.name.as_str() {
+            "vertex" => {
+                saw_vertices = true;
+                read_vertices(el, &mut body, bytes.len(), &mut out)?;
+            }
+            "face" => read_faces(el, &mut body, &mut out.indices)?,
+            _ => {
+                for _ in 0..el.count {
+                    for p in &el.props {
+                        read_prop(p, &mut body)?;
+                    }
+                }
+            }
+        }
+    }
+    if !saw_vertices {
+        return Err("no vertex element".into());
+    }
+    let n = out.positions.len() as u32;
+    if out.indices.iter().flatten().any(|&i| i >= n) {
+        return Err("a face indexes a vertex that does not exist".into());
+    }
+    if out.indices.is_empty() {
+        return Err("no triangles".into());
+    }
+    Ok(out)
+}
+
+/// The header text and the offset where the body starts.
+fn split_header(bytes: &[u8]) -> Result<(&str, usize), String> {
     const END: &[u8] = b"end_header";
     let end = bytes
         .windows(END.len())
@@ -121,6 +183,11 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
         body_start += 1;
     }
     let header = std::str::from_utf8(&bytes[..end]).map_err(|_| "the header is not text")?;
+    Ok((header, body_start))
+}
+
+/// The `format` and the declared elements.
+fn parse_header(header: &str) -> Result<(String, Vec<Element>), String> {
     let mut lines = header.lines().map(str::trim);
     if lines.next() != Some("ply") {
         return Err("the file does not start with `ply`".into());
@@ -154,139 +221,124 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
             _ => return Err(format!("cannot read header line \"{line}\"")),
         }
     }
-    let mut body = match format.as_deref() {
-        Some("ascii") => Body::Ascii(
-            std::str::from_utf8(&bytes[body_start..])
-                .map_err(|_| "the ASCII body is not text")?
-                .split_ascii_whitespace(),
-        ),
-        Some("binary_little_endian") => Body::Binary(bytes, body_start),
-        Some("binary_big_endian") => {
-            return Err(
-                "binary_big_endian PLY is not supported (convert it to binary_little_endian or ascii)"
-                    .into(),
-            );
+    Ok((format.ok_or("no `format` line")?, elements))
+}
+
+/// Reads one property; a scalar's value, or 0 for a list (whose items are skipped).
+fn read_prop(p: &Prop, body: &mut Body) -> Result<f64, String> {
+    match p {
+        Prop::Scalar(_, ty) => body.read(*ty),
+        Prop::List(_, ct, it) => {
+            let n = body.read(*ct)? as usize;
+            for _ in 0..n {
+                body.read(*it)?;
+            }
+            Ok(0.0)
         }
-        Some(f) => return Err(format!("unknown format \"{f}\"")),
-        None => return Err("no `format` line".into()),
+    }
+}
+
+/// The `vertex` element: positions and, when all three are there, normals. `file_len` bounds
+/// what is reserved.
+fn read_vertices(
+    el: &Element,
+    body: &mut Body,
+    file_len: usize,
+    out: &mut PlyMesh,
+) -> Result<(), String> {
+    let find = |n: &str| {
+        el.props
+            .iter()
+            .position(|p| matches!(p, Prop::Scalar(name, _) if name == n))
     };
-    let mut out = PlyMesh {
-        positions: Vec::new(),
-        normals: Vec::new(),
-        indices: Vec::new(),
+    let both = |names: [&str; 2]| match names.map(find) {
+        [Some(a), Some(b)] => Some([a, b]),
+        _ => None,
     };
-    let mut saw_vertices = false;
-    for el in &elements {
-        match el.name.as_str() {
-            "vertex" => {
-                saw_vertices = true;
-                let find = |n: &str| {
-                    el.props
-                        .iter()
-                        .position(|p| matches!(p, Prop::Scalar(name, _) if name == n))
-                };
-                let pos_idx = ["x", "y", "z"].map(find);
-                if pos_idx.iter().any(Option::is_none) {
-                    return Err("the vertex element lacks x, y or z".into());
-                }
-                let nrm_idx = ["nx", "ny", "nz"].map(find);
-                let has_normals = nrm_idx.iter().all(Option::is_some);
-                // The count comes from the header: never reserve more than the body can hold
-                // (a hostile `element vertex 18446744073709551615` aborted the process).
-                out.positions.reserve(el.count.min(bytes.len()));
-                let mut vals = vec![0.0f64; el.props.len()];
-                for _ in 0..el.count {
-                    for (i, p) in el.props.iter().enumerate() {
-                        vals[i] = match p {
-                            Prop::Scalar(_, ty) => body.read(*ty)?,
-                            Prop::List(_, ct, it) => {
-                                let n = body.read(*ct)? as usize;
-                                for _ in 0..n {
-                                    body.read(*it)?;
-                                }
-                                0.0
-                            }
-                        };
-                    }
-                    let p = pos_idx.map(|i| vals[i.expect("checked")] as f32);
-                    let p = Vec3::from_array(p);
-                    if !p.is_finite() {
-                        return Err("a vertex position is not finite".into());
-                    }
-                    out.positions.push(p);
-                    if has_normals {
-                        let n = nrm_idx.map(|i| vals[i.expect("checked")] as f32);
-                        out.normals.push(Vec3::from_array(n).normalize_or_zero());
-                    }
-                }
+    let uv_idx = both(["u", "v"])
+        .or_else(|| both(["texture_u", "texture_v"]))
+        .or_else(|| both(["s", "t"]));
+    let rgb_idx = [["r", "g", "b"], ["red", "green", "blue"]]
+        .into_iter()
+        .find_map(|names| match names.map(find) {
+            [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+            _ => None,
+        });
+    // 8-bit colours are 0..255.
+    let rgb_scale = rgb_idx.map_or(1.0, |i| match &el.props[i[0]] {
+        Prop::Scalar(_, Scalar::U8) => 1.0 / 255.0,
+        _ => 1.0,
+    });
+    let pos_idx = ["x", "y", "z"].map(find);
+    if pos_idx.iter().any(Option::is_none) {
+        return Err("the vertex element lacks x, y or z".into());
+    }
+    let nrm_idx = ["nx", "ny", "nz"].map(find);
+    let has_normals = nrm_idx.iter().all(Option::is_some);
+    // The count comes from the header: never reserve more than the body can hold
+    // (a hostile `element vertex 18446744073709551615` aborted the process).
+    out.positions.reserve(el.count.min(file_len));
+    let mut vals = vec![0.0f64; el.props.len()];
+    for _ in 0..el.count {
+        for (i, p) in el.props.iter().enumerate() {
+            vals[i] = read_prop(p, body)?;
+        }
+        let p = pos_idx.map(|i| vals[i.expect("checked")] as f32);
+        let p = Vec3::from_array(p);
+        if !p.is_finite() {
+            return Err("a vertex position is not finite".into());
+        }
+        out.positions.push(p);
+        if has_normals {
+            let n = nrm_idx.map(|i| vals[i.expect("checked")] as f32);
+            out.normals.push(Vec3::from_array(n).normalize_or_zero());
+        }
+        if let Some(i) = uv_idx {
+            out.uvs.push(Vec2::from_array(i.map(|i| vals[i] as f32)));
+        }
+        if let Some(i) = rgb_idx {
+            out.colors
+                .push(Vec3::from_array(i.map(|i| (vals[i] * rgb_scale) as f32)));
+        }
+    }
+    Ok(())
+}
+
+/// The `face` element: polygons of `vertex_indices` (or `vertex_index`), fan-triangulated.
+fn read_faces(el: &Element, body: &mut Body, indices: &mut Vec<[u32; 3]>) -> Result<(), String> {
+    let list = el
+        .props
+        .iter()
+        .position(|p| {
+            matches!(p, Prop::List(name, _, _) if name == "vertex_indices" || name == "vertex_index")
+        })
+        .ok_or("the face element has no vertex_indices list")?;
+    let mut poly = Vec::new();
+    for _ in 0..el.count {
+        for (i, p) in el.props.iter().enumerate() {
+            let Prop::List(_, ct, it) = p else {
+                read_prop(p, body)?;
+                continue;
+            };
+            if i != list {
+                read_prop(p, body)?;
+                continue;
             }
-            "face" => {
-                let list = el
-                    .props
-                    .iter()
-                    .position(|p| {
-                        matches!(p, Prop::List(name, _, _) if name == "vertex_indices" || name == "vertex_index")
-                    })
-                    .ok_or("the face element has no vertex_indices list")?;
-                let mut poly = Vec::new();
-                for _ in 0..el.count {
-                    for (i, p) in el.props.iter().enumerate() {
-                        match p {
-                            Prop::Scalar(_, ty) => {
-                                body.read(*ty)?;
-                            }
-                            Prop::List(_, ct, it) => {
-                                let n = body.read(*ct)? as usize;
-                                poly.clear();
-                                for _ in 0..n {
-                                    let v = body.read(*it)?;
-                                    if i == list {
-                                        if v < 0.0 || v.fract() != 0.0 || v >= u32::MAX as f64 {
-                                            return Err(format!("bad vertex index {v}"));
-                                        }
-                                        poly.push(v as u32);
-                                    }
-                                }
-                                if i == list {
-                                    for k in 1..poly.len().saturating_sub(1) {
-                                        out.indices.push([poly[0], poly[k], poly[k + 1]]);
-                                    }
-                                }
-                            }
-                        }
-                    }
+            let n = body.read(*ct)? as usize;
+            poly.clear();
+            for _ in 0..n {
+                let v = body.read(*it)?;
+                if v < 0.0 || v.fract() != 0.0 || v >= u32::MAX as f64 {
+                    return Err(format!("bad vertex index {v}"));
                 }
+                poly.push(v as u32);
             }
-            _ => {
-                for _ in 0..el.count {
-                    for p in &el.props {
-                        match p {
-                            Prop::Scalar(_, ty) => {
-                                body.read(*ty)?;
-                            }
-                            Prop::List(_, ct, it) => {
-                                let n = body.read(*ct)? as usize;
-                                for _ in 0..n {
-                                    body.read(*it)?;
-                                }
-                            }
-                        }
-                    }
-                }
+            for k in 1..poly.len().saturating_sub(1) {
+                indices.push([poly[0], poly[k], poly[k + 1]]);
             }
         }
     }
-    if !saw_vertices {
-        return Err("no vertex element".into());
-    }
-    let n = out.positions.len() as u32;
-    if out.indices.iter().flatten().any(|&i| i >= n) {
-        return Err("a face indexes a vertex that does not exist".into());
-    }
-    if out.indices.is_empty() {
-        return Err("no triangles".into());
-    }
-    Ok(out)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -320,6 +372,20 @@ end_header
         assert_eq!(m.positions.len(), 4);
         assert_eq!(m.indices, vec![[0, 1, 2], [0, 2, 3]]);
         assert!(m.normals.is_empty());
+        assert!(m.uvs.is_empty(), "a lone `u` is not a texture coordinate");
+    }
+
+    #[test]
+    fn texture_coordinates_and_colours_under_each_name() {
+        for (u, v) in [("u", "v"), ("s", "t"), ("texture_u", "texture_v")] {
+            let ply = format!(
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float {u}\nproperty float {v}\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0 255 0 0\n1 0 0 1 0 0 255 0\n0 1 0 0.25 0.75 0 0 51\n3 0 1 2\n"
+            );
+            let m = parse_ply(ply.as_bytes()).unwrap();
+            assert_eq!(m.uvs[2], Vec2::new(0.25, 0.75), "{u} {v}");
+            assert_eq!(m.colors[0], Vec3::X);
+            assert!((m.colors[2].z - 0.2).abs() < 1e-6);
+        }
     }
 
     #[test]

@@ -1,0 +1,187 @@
+//! Texture plugins where Mitsuba accepts a texture: `bitmap` (with `raw`, `filter_type`,
+//! `wrap_mode`, `to_uv`), `checkerboard` and `mesh_attribute` (vertex colours). Each texture
+//! goes into the scene's table once (a referenced one is shared, as are decoded images).
+use super::Builder;
+use crate::mitsuba::xml::{ChildKind, Obj};
+use crate::{Bitmap, FilterType, Param, Rgb, Texture, TextureId, WrapMode};
+use glam::{Affine2, DMat4, Mat2, Vec2};
+
+impl<'t> Builder<'t> {
+    /// The texture filling parameter `name` of `o`, nested or referenced: `None` when there is
+    /// none, `Some(None)` when there is one but it failed (reported).
+    fn texture_child(&mut self, o: &'t Obj, name: &str) -> Option<Option<TextureId>> {
+        let c = o
+            .children
+            .iter()
+            .find(|c| c.name.as_deref() == Some(name))?;
+        let t = match &c.kind {
+            ChildKind::Obj(t) => t,
+            ChildKind::Ref(id) => match self.ids.get(id.as_str()) {
+                Some(t) if t.tag == "texture" => *t,
+                // Not a texture: `colour` reports it.
+                _ => return None,
+            },
+        };
+        if t.tag != "texture" {
+            return None;
+        }
+        c.used.set(true);
+        Some(self.texture_id(t))
+    }
+
+    /// A colour parameter that may also be a texture.
+    pub(super) fn colour_param(&mut self, o: &'t Obj, name: &str) -> Option<Param<Rgb>> {
+        match self.texture_child(o, name) {
+            Some(t) => t.map(Param::Texture),
+            None => self.colour(o, name).map(Param::Const),
+        }
+    }
+
+    /// A texture used as a number (its luminance, as Mitsuba's `eval_1`), if one fills `name`.
+    pub(super) fn float_texture(&mut self, o: &'t Obj, name: &str) -> Option<Option<TextureId>> {
+        self.texture_child(o, name)
+    }
+
+    /// Builds texture `t` (once per id).
+    fn texture_id(&mut self, t: &'t Obj) -> Option<TextureId> {
+        if let Some(id) = &t.id
+            && let Some(done) = self.textures.get(id)
+        {
+            return *done;
+        }
+        let built = self.texture_plugin(t);
+        self.finish(t);
+        let id = built.map(|tex| self.scene.add_texture(tex));
+        if let Some(name) = &t.id {
+            self.textures.insert(name.clone(), id);
+        }
+        id
+    }
+
+    fn texture_plugin(&mut self, t: &'t Obj) -> Option<Texture> {
+        match t.kind.as_str() {
+            "bitmap" => self.bitmap(t).map(Texture::Bitmap),
+            "checkerboard" => {
+                let color0 = self.colour(t, "color0").unwrap_or(Rgb::splat(0.4));
+                let color1 = self.colour(t, "color1").unwrap_or(Rgb::splat(0.2));
+                Some(Texture::Checkerboard {
+                    color0,
+                    color1,
+                    to_uv: self.uv_transform(t),
+                })
+            }
+            "mesh_attribute" => match self.string(t, "name") {
+                Some(("vertex_color", _)) => Some(Texture::MeshAttribute {
+                    name: "vertex_color".into(),
+                }),
+                Some((other, at)) => {
+                    self.error(
+                        at,
+                        format!("{}: attribute \"{other}\" is not supported (eyeadapt meshes carry vertex_color only)", t.describe()),
+                    );
+                    None
+                }
+                None => {
+                    self.error(
+                        t.at,
+                        format!("{} needs a <string name=\"name\">", t.describe()),
+                    );
+                    None
+                }
+            },
+            _ => {
+                self.error(
+                    t.at,
+                    format!(
+                        "unsupported {}: eyeadapt supports texture plugins bitmap, checkerboard and mesh_attribute",
+                        t.describe()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn bitmap(&mut self, t: &'t Obj) -> Option<Bitmap> {
+        let raw = self.boolean(t, "raw").unwrap_or(false);
+        // Accepted: how Mitsuba stores the texture in memory.
+        self.boolean(t, "accel");
+        self.string(t, "format");
+        let filter = match self.string(t, "filter_type") {
+            None | Some(("bilinear", _)) => FilterType::Bilinear,
+            Some(("nearest", _)) => FilterType::Nearest,
+            Some((other, at)) => {
+                self.error(
+                    at,
+                    format!(
+                        "{}: unknown filter_type \"{other}\" (expected bilinear or nearest)",
+                        t.describe()
+                    ),
+                );
+                FilterType::Bilinear
+            }
+        };
+        let wrap = match self.string(t, "wrap_mode") {
+            None | Some(("repeat", _)) => WrapMode::Repeat,
+            Some(("mirror", _)) => WrapMode::Mirror,
+            Some(("clamp", _)) => WrapMode::Clamp,
+            Some((other, at)) => {
+                self.error(
+                    at,
+                    format!(
+                        "{}: unknown wrap_mode \"{other}\" (expected repeat, mirror or clamp)",
+                        t.describe()
+                    ),
+                );
+                WrapMode::Repeat
+            }
+        };
+        let to_uv = self.uv_transform(t);
+        let Some((file, at)) = self.string(t, "filename") else {
+            self.error(
+                t.at,
+                format!("{} needs a <string name=\"filename\">", t.describe()),
+            );
+            return None;
+        };
+        let path = self.sources.resolve(file);
+        let key = (path.clone(), raw);
+        let image = match self.images.get(&key) {
+            Some(i) => i.clone(),
+            None => match crate::load_image(&path, raw) {
+                Ok(i) => {
+                    let i = std::sync::Arc::new(i);
+                    self.images.insert(key, i.clone());
+                    i
+                }
+                Err(e) => {
+                    self.error(at, e);
+                    return None;
+                }
+            },
+        };
+        Some(Bitmap {
+            filename: path,
+            image,
+            raw,
+            filter,
+            wrap,
+            to_uv,
+        })
+    }
+
+    /// `to_uv`: the 2D part of a 4×4 transform (x and y rows, the translation column).
+    fn uv_transform(&mut self, t: &'t Obj) -> Affine2 {
+        let m = self
+            .transform(t, "to_uv")
+            .unwrap_or(DMat4::IDENTITY)
+            .as_mat4();
+        Affine2::from_mat2_translation(
+            Mat2::from_cols(
+                m.x_axis.truncate().truncate(),
+                m.y_axis.truncate().truncate(),
+            ),
+            Vec2::new(m.w_axis.x, m.w_axis.y),
+        )
+    }
+}
