@@ -55,8 +55,9 @@ PALETTE = {
     "grey_edge": "#9c755f",
 }
 
-# Line style of each temporal-filter preset; per-frame estimates are solid.
-FILTER_STYLE = {"fairchild": "--", "artistic": ":", "rinner": "-."}
+# Line style of each temporal-filter preset, as in the report: fairchild dashed, artistic
+# dotted, rinner long dashes; per-frame estimates are solid.
+FILTER_STYLE = {"fairchild": "--", "artistic": ":", "rinner": (0, (6, 2))}
 
 
 def colour_of(base):
