@@ -533,22 +533,20 @@ fn nan_samples_are_counted_dropped_and_flagged_per_frame() {
     scene.lights.push(job.scene.lights.last().unwrap().clone());
     let still_out = t.path().join("still");
     std::fs::create_dir_all(&still_out).unwrap();
-    let o = eyeadapt_sequencer::still::StillOptions {
-        spp: Some(2),
+    let mut o = eyeadapt_sequencer::still::StillOptions {
         out: still_out.clone(),
         ..Default::default()
     };
-    let r = eyeadapt_sequencer::still::render_still(&scene, &o).unwrap();
-    assert!(r.frame.stats.invalid_samples > 0);
-    eyeadapt_sequencer::still::adapt_still(
-        &r,
-        &["grey_world"],
+    o.sampling.spp = Some(2);
+    let r = eyeadapt_sequencer::still::render_still(
+        &scene,
+        &o,
+        &[eyeadapt_sequencer::Estimator::GreyWorld],
         &job.estimator_config,
         &job.adaptation,
-        &still_out,
-        0.0,
     )
     .unwrap();
+    assert!(r.frame.image.stats.invalid_samples > 0);
     let csv = std::fs::read_to_string(still_out.join("adaptation.csv")).unwrap();
     assert!(
         csv.lines().nth(1).unwrap().contains("image_nan_dropped"),

@@ -3,7 +3,7 @@
 //! normal `cargo test` (so it depends on nothing but the eyeadapt crates).
 #![allow(dead_code)]
 use eyeadapt_scene::{Bsdf, Light, Rgb as Vec3, Scene, check_colour, load_obj_bytes};
-use eyeadapt_sequencer::{FrameSet, MAX_FRAMES, chunk, chunk_count};
+use eyeadapt_sequencer::{FrameSet, MAX_FRAMES};
 use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View, render};
 use std::path::Path;
 
@@ -208,13 +208,13 @@ pub fn frame_spec(data: &[u8]) {
                 &[]
             };
             for &size in sizes {
-                let n = chunk_count(s.len(), size).unwrap();
+                let n = set.chunk_count(size).unwrap();
                 let mut joined = Vec::new();
                 for i in 0..n {
-                    joined.extend_from_slice(chunk(s, size, i).unwrap());
+                    joined.extend(set.chunk(size, i).unwrap().iter());
                 }
                 assert_eq!(joined, s);
-                assert!(chunk(s, size, n).is_err());
+                assert!(set.chunk(size, n).is_err());
             }
         }
         Err(e) => {

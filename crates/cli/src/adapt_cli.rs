@@ -2,13 +2,13 @@
 //! after a render.
 use crate::args::AdaptArgs;
 use eyeadapt_color::{Cat, Surround, cct_mccamy, xyz_to_uv, xyz_to_xy};
-use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::{AdaptationConfig, AdaptationSettings, EstimatorConfig, Reading};
+use eyeadapt_sequencer::{Estimator, Failure};
 
 pub fn resolve(
     list: &str,
     a: &AdaptArgs,
-) -> Result<(Vec<&'static str>, EstimatorConfig, AdaptationSettings), Failure> {
+) -> Result<(Vec<Estimator>, EstimatorConfig, AdaptationSettings), Failure> {
     let mut cfg = EstimatorConfig {
         list: vec![list.to_string()],
         ..EstimatorConfig::default()
@@ -66,7 +66,7 @@ pub fn print_table(readings: &[Reading], a: &AdaptationSettings) {
         });
         println!(
             "{:<15} {:>8} {:>8} {:>8} {:>8} {:>8} {:>10}  {}",
-            r.estimator,
+            r.estimator.name(),
             f(xy.map(|p| p.x)),
             f(xy.map(|p| p.y)),
             f(uv.map(|p| p.x)),

@@ -157,6 +157,19 @@ pub struct SamplingArgs {
     pub seed: Option<u64>,
 }
 
+impl SamplingArgs {
+    pub fn sampling(&self) -> eyeadapt_sequencer::pipeline::Sampling {
+        eyeadapt_sequencer::pipeline::Sampling {
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            max_depth: self.max_depth,
+            rr_depth: self.rr_depth,
+            seed: self.seed,
+        }
+    }
+}
+
 fn parse_max_depth(s: &str) -> Result<i32, String> {
     let v: i32 = s
         .parse()

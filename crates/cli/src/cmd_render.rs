@@ -4,28 +4,27 @@ use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::still::{StillOptions, prepare_out_dir, render_still, stats_json};
 
 pub fn run(a: RenderArgs) -> Result<(), Failure> {
+    // Every option is checked before anything is rendered or written.
+    let (estimators, cfg, adaptation) = match &a.adapt.estimators {
+        Some(list) => crate::adapt_cli::resolve(list, &a.adapt)?,
+        None => Default::default(),
+    };
     let scene = eyeadapt_scene::resolve_scene(&a.scene)?;
     for w in &scene.warnings {
         eprintln!("{w}");
     }
     prepare_out_dir(&a.out)?;
-    let s = &a.sampling;
     let opts = StillOptions {
-        spp: s.spp,
-        width: s.width,
-        height: s.height,
-        max_depth: s.max_depth,
-        rr_depth: s.rr_depth,
-        seed: s.seed,
+        sampling: a.sampling.sampling(),
         exposure: a.exposure,
         out: a.out.clone(),
     };
-    let r = render_still(&scene, &opts)?;
-    let st = &r.frame.stats;
+    let r = render_still(&scene, &opts, &estimators, &cfg, &adaptation)?;
+    let st = &r.frame.image.stats;
     println!(
         "rendered {}x{} at {} spp (max_depth {}) in {:.3} s: {:.3} M samples/s; BVH {} triangles in {:.3} s",
-        r.view.width,
-        r.view.height,
+        r.frame.view.width,
+        r.frame.view.height,
         r.settings.spp,
         r.settings.path.max_depth,
         st.seconds,
@@ -41,17 +40,8 @@ pub fn run(a: RenderArgs) -> Result<(), Failure> {
     }
     println!("Saved: '{}'", r.exr.display());
     println!("Saved: '{}'", r.preview.display());
-    if let Some(list) = &a.adapt.estimators {
-        let (list, cfg, adaptation) = crate::adapt_cli::resolve(list, &a.adapt)?;
-        let readings = eyeadapt_sequencer::still::adapt_still(
-            &r,
-            &list,
-            &cfg,
-            &adaptation,
-            &a.out,
-            a.exposure,
-        )?;
-        crate::adapt_cli::print_table(&readings, &adaptation);
+    if !estimators.is_empty() {
+        crate::adapt_cli::print_table(&r.frame.readings, &adaptation);
         println!("Saved: '{}'", a.out.join("adaptation.csv").display());
     }
     if let Some(p) = &a.stats_json {

@@ -8,16 +8,10 @@ use eyeadapt_sequencer::sequence::{SequenceOptions, plan_chunks, plan_frames, ru
 use std::path::PathBuf;
 
 fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
-    let s = &a.sampling;
     load_job(
         a.job.as_deref(),
         &JobOverrides {
-            width: s.width,
-            height: s.height,
-            spp: s.spp,
-            max_depth: s.max_depth,
-            rr_depth: s.rr_depth,
-            seed: s.seed,
+            sampling: a.sampling.sampling(),
             eye_samples: a.eye_samples,
         },
     )
@@ -32,7 +26,7 @@ fn selection(a: &SequenceArgs, job: &Job) -> Result<Option<FrameSet>, Failure> {
     }
     if let (Some(s), Some(e)) = (a.start, a.end) {
         // Clamp the end to the job (OpenCue's last #FRAME_END# can run past it).
-        let last = job.frames.as_slice().last().copied().unwrap_or(0);
+        let last = job.frames.last().unwrap_or(0);
         let e = e.min(last);
         if a.step == 0 {
             return Err(Failure::Input("--step must be at least 1".into()));
@@ -117,14 +111,14 @@ pub fn plan(a: SequenceArgs) -> Result<(), Failure> {
     let job = job_of(&a)?;
     let (_, all) = plan_frames(&job, selection(&a, &job)?.as_ref(), None)?;
     let chunks = match a.chunk_size {
-        Some(n) => plan_chunks(all.len(), n as usize)?,
+        Some(n) => plan_chunks(&all, n as usize)?,
         None => 1,
     };
     println!("EYEADAPT_JOB_NAME={}", job.name);
     println!("EYEADAPT_FRAMES={}", all.len());
     println!("EYEADAPT_CHUNKS={chunks}");
-    println!("EYEADAPT_FIRST={}", all[0]);
-    println!("EYEADAPT_LAST={}", all[all.len() - 1]);
+    println!("EYEADAPT_FIRST={}", all.first().unwrap_or_default());
+    println!("EYEADAPT_LAST={}", all.last().unwrap_or_default());
     println!("EYEADAPT_JOB_HASH={}", job.hash);
     Ok(())
 }

@@ -20,11 +20,12 @@ mod sheet;
 pub use crate::measure::{Region, RegionMean, equal_luminance_hsv, region_mean};
 pub use crate::report::results_markdown;
 
+use eyeadapt_color::Estimate;
 use eyeadapt_sequencer::Failure;
-use eyeadapt_sequencer::adapt::{Reading, csv_row, estimate_all};
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
-use eyeadapt_sequencer::output::{atomic_write_bytes, write_exr};
-use eyeadapt_tracer::{Frame, RenderSettings, SceneData, View, render};
+use eyeadapt_sequencer::output::atomic_write_bytes;
+use eyeadapt_sequencer::pipeline::{FrameResult, Layout, Outputs, WriteSpec, write_images};
+use eyeadapt_tracer::{Frame, SceneData, View};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -223,12 +224,19 @@ pub struct PaperRun {
     pub markdown: String,
 }
 
+/// One series of a shot: an estimator's reading, or a case's diagnostic estimate.
+pub(crate) struct Named {
+    pub name: &'static str,
+    pub estimate: Estimate,
+}
+
 /// One rendered frame of a case with its estimates.
 pub(crate) struct Shot {
     pub frame: u32,
     pub time: f64,
     pub view: View,
-    pub readings: Vec<Reading>,
+    /// The estimators' readings, then the case's diagnostics.
+    pub readings: Vec<Named>,
     /// Kept for stills; `None` for long sequences (only the sheet tiles are kept).
     pub image: Option<Frame>,
     /// Sheet tiles raw | wcam | eye, 8-bit sRGB, and their size.
@@ -277,15 +285,15 @@ fn load_case_job(
     let path = dir.join(format!("{name}.toml"));
     atomic_write_bytes(&path, text.as_bytes())?;
     let mut ov = JobOverrides {
-        seed: Some(o.seed),
         eye_samples: o.eye_samples,
         ..Default::default()
     };
+    ov.sampling.seed = Some(o.seed);
     if o.quick {
         let (w, h, spp) = case.quick[index];
-        ov.width = Some(w);
-        ov.height = Some(h);
-        ov.spp = Some(spp);
+        ov.sampling.width = Some(w);
+        ov.sampling.height = Some(h);
+        ov.sampling.spp = Some(spp);
     }
     load_job(Some(&path), &ov)
 }
@@ -301,35 +309,27 @@ fn run_job(
     let name = case.jobs[index].0;
     let job = load_case_job(case, index, o, dir)?;
     let data = SceneData::new(&job.scene);
+    let pipeline = job.pipeline(&data);
     let mut csv = String::from(eyeadapt_sequencer::adapt::CSV_HEADER);
     csv.push('\n');
     let mut shots = Vec::new();
     for &f in job.frames.as_slice() {
-        let view = job.view(f);
-        let settings = RenderSettings {
-            spp: job.spp,
-            path: job.path_settings,
-            seed: job.seed,
-            frame: f,
-        };
-        let image = render(&data, &view, &settings);
-        let mut readings = estimate_all(
-            &job.estimators,
-            &job.estimator_config,
-            &data,
-            &view,
-            &image,
-            f,
-            job.seed,
-            job.path_settings,
-        );
-        let (extra, diag) = cases::diagnostics(case, &job, &view, &image);
-        readings.extend(extra);
-        let time = job.time(f);
-        for r in &readings {
-            csv.push_str(&csv_row(f, time, r, &[], view.position));
+        let r = pipeline.run(f, job.time(f), job.view(f));
+        let (extra, diag) = cases::diagnostics(case, &job, &r.view, &r.image);
+        csv.push_str(&r.rows());
+        for d in &extra {
+            csv.push_str(&r.row(d.name, &d.estimate));
         }
-        let tiles = sheet::tiles(&image, &readings, &job.adaptation);
+        let readings: Vec<Named> = r
+            .readings
+            .iter()
+            .map(|x| Named {
+                name: x.estimator.name(),
+                estimate: x.estimate.clone(),
+            })
+            .chain(extra)
+            .collect();
+        let tiles = sheet::tiles(&r.image, &readings, &job.adaptation);
         let n = job.frames.len();
         if o.verbose && (n <= 10 || f % 10 == 0 || f as usize + 1 == n) {
             eprintln!(
@@ -337,18 +337,29 @@ fn run_job(
                 case.number, job.width, job.height, job.spp
             );
         }
-        let image = if keep_images {
-            write_exr(&dir.join(format!("{name}_frame_{f:06}.exr")), &image)?;
-            Some(image)
-        } else {
-            None
-        };
+        if keep_images {
+            let spec = WriteSpec {
+                layout: Layout::Prefixed(name),
+                outputs: Outputs {
+                    raw_exr: true,
+                    raw_png: false,
+                    adapted_png: false,
+                    adapted_exr: false,
+                },
+                exposure: job.exposure,
+                adaptation: &job.adaptation,
+            };
+            write_images(dir, &r, &spec, |_| {})?;
+        }
+        let FrameResult {
+            time, view, image, ..
+        } = r;
         shots.push(Shot {
             frame: f,
             time,
             view,
             readings,
-            image,
+            image: keep_images.then_some(image),
             tiles,
             diag,
         });

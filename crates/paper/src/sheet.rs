@@ -4,9 +4,10 @@
 //! (emitters excluded) maps to 0.9, the same exposure for the three tiles of a row, and encoded
 //! with the preview curve (`output::preview_bytes`). Rows and tiles are separated by 4 px of
 //! black.
+use crate::Named;
 use eyeadapt_color::luminance_f32;
 use eyeadapt_sequencer::Failure;
-use eyeadapt_sequencer::adapt::{AdaptationSettings, Reading, apply, cat_matrix, white_for_cat};
+use eyeadapt_sequencer::adapt::{AdaptationSettings, apply, cat_matrix, white_for_cat};
 use eyeadapt_sequencer::output::{atomic_write_bytes, preview_bytes};
 use eyeadapt_tracer::Frame;
 
@@ -67,13 +68,13 @@ pub fn auto_exposure(frame: &Frame) -> f32 {
 
 /// Builds the raw | wcam | eye tiles of a frame (estimators missing from `readings` adapt
 /// with D65, i.e. show the raw frame).
-pub fn tiles(frame: &Frame, readings: &[Reading], adaptation: &AdaptationSettings) -> Tiles {
+pub(crate) fn tiles(frame: &Frame, readings: &[Named], adaptation: &AdaptationSettings) -> Tiles {
     let ev = auto_exposure(frame);
     let k = frame.width.div_ceil(TILE_MAX_WIDTH).max(1);
     let adapted = |name: &str| {
         let white = readings
             .iter()
-            .find(|r| r.estimator == name)
+            .find(|r| r.name == name)
             .map_or(eyeadapt_color::D65_XYZ, |r| {
                 white_for_cat(&r.estimate, eyeadapt_color::D65_XYZ).0
             });

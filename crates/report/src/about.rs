@@ -37,7 +37,7 @@ mod tests {
 
     #[test]
     fn every_estimator_of_the_sequencer_is_explained() {
-        for e in eyeadapt_sequencer::adapt::ALL_ESTIMATORS {
+        for e in eyeadapt_sequencer::Estimator::ALL.map(|e| e.name()) {
             assert!(what_it_measures(e).is_some(), "{e} has no sentence");
         }
         assert!(

@@ -207,7 +207,7 @@ fn job_parameters(h: &mut String, m: &Manifest) {
     };
     row("job hash", &format!("<code>{}</code>", escape(&m.job_hash)));
     row("estimators", &escape(&m.estimators.join(", ")));
-    for (k, v) in &m.settings {
+    for (k, v) in &m.settings.entries() {
         row(k, &escape(v));
     }
     h.push_str("</table></details>\n");
@@ -230,9 +230,9 @@ and <code>shared/design/estimators.md</code> §7–§8.</p>
         name = escape(&m.job_name),
         source = escape(&m.job_source),
         n = m.frames.len(),
-        frames = escape(&eyeadapt_sequencer::manifest::frames_to_spec(
-            &m.frames.keys().copied().collect::<Vec<_>>()
-        )),
+        frames = escape(
+            &eyeadapt_sequencer::FrameSet::from_frames(m.frames.keys().copied()).to_string()
+        ),
         fps = m.fps,
         version = env!("CARGO_PKG_VERSION"),
         tool = escape(&m.tool),

@@ -4,7 +4,7 @@
 //! Steps:
 //! 1. read `manifest.json` and `adaptation.csv`; rows whose estimator contains `+` were derived
 //!    by an earlier report and are dropped (and recomputed);
-//! 2. apply the job's temporal filters (`settings["temporal_filters"]`) to every estimator's
+//! 2. apply the job's temporal filters (`settings.temporal_filters`) to every estimator's
 //!    series, and rewrite `adaptation.csv` atomically: the committed frames' rows first, as
 //!    they were, then the derived rows `<estimator>+<preset>` (same columns);
 //! 3. §7.2 metrics of every series (raw and filtered), and §7.3 metrics of the adapted image
@@ -31,7 +31,7 @@ pub use coherence::{EstimatorReport, Metric};
 pub use series::{Point, Series};
 pub use video::{VideoOutcome, label_strip};
 
-use eyeadapt_color::{Cat, DEFAULT_SIGMA_S, DEFAULT_STRIDE};
+use eyeadapt_color::{DEFAULT_SIGMA_S, DEFAULT_STRIDE};
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::AdaptationSettings;
 use eyeadapt_sequencer::manifest::{CSV, Manifest};
@@ -80,25 +80,11 @@ pub struct ReportSummary {
     pub reports: Vec<EstimatorReport>,
 }
 
-fn adaptation_of(m: &Manifest) -> Result<AdaptationSettings, Failure> {
-    let d = AdaptationSettings::default();
-    let cat = match m.settings.get("cat") {
-        Some(c) => c
-            .parse::<Cat>()
-            .map_err(|e| Failure::Input(format!("manifest setting cat: {e}")))?,
-        None => d.cat,
-    };
-    let degree = match m.settings.get("degree") {
-        Some(s) => s
-            .parse::<f64>()
-            .ok()
-            .filter(|v| (0.0..=1.0).contains(v))
-            .ok_or_else(|| {
-                Failure::Input(format!("manifest setting degree {s:?} is not in [0, 1]"))
-            })?,
-        None => d.degree,
-    };
-    Ok(AdaptationSettings { cat, degree })
+fn adaptation_of(m: &Manifest) -> AdaptationSettings {
+    AdaptationSettings {
+        cat: m.settings.cat,
+        degree: m.settings.degree,
+    }
 }
 
 /// Computes the coherence report of the sequence in `dir`.
@@ -128,8 +114,8 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
         )));
     }
     let _lock = lock_dir(dir)?;
-    let adaptation = adaptation_of(&m)?;
-    let presets = series::presets(&m)?;
+    let adaptation = adaptation_of(&m);
+    let presets = series::presets(&m);
     let mut notes = Vec::new();
 
     // 1. The CSV.

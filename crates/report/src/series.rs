@@ -11,7 +11,7 @@ use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::{AdaptationSettings, cat_matrix};
 use eyeadapt_sequencer::manifest::Manifest;
 use eyeadapt_sequencer::output::read_exr;
-use eyeadapt_sequencer::sequence::frame_name;
+use eyeadapt_sequencer::pipeline::frame_name;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -89,23 +89,15 @@ pub fn base_series(m: &Manifest, table: &Table) -> Vec<Series> {
         .collect()
 }
 
-/// The job's temporal filter presets (`settings["temporal_filters"]`), `none` left out.
-pub fn presets(m: &Manifest) -> Result<Vec<TemporalFilter>, Failure> {
-    let list = m
-        .settings
-        .get("temporal_filters")
-        .map(String::as_str)
-        .unwrap_or("");
+/// The job's temporal filter presets, `none` and repeats left out.
+pub fn presets(m: &Manifest) -> Vec<TemporalFilter> {
     let mut out = Vec::new();
-    for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let f: TemporalFilter = name
-            .parse()
-            .map_err(|e| Failure::Input(format!("manifest setting temporal_filters: {e}")))?;
-        if f != TemporalFilter::None && !out.contains(&f) {
-            out.push(f);
+    for f in &m.settings.temporal_filters {
+        if *f != TemporalFilter::None && !out.contains(f) {
+            out.push(*f);
         }
     }
-    Ok(out)
+    out
 }
 
 /// Filters `s` with `filter` (observer adapted to the first frame); returns the series and

@@ -7,7 +7,7 @@
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::manifest::Manifest;
 use eyeadapt_sequencer::output::{temp_path, write_png};
-use eyeadapt_sequencer::sequence::frame_name;
+use eyeadapt_sequencer::pipeline::frame_name;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

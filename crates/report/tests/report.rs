@@ -3,10 +3,11 @@ use eyeadapt_color::{
     Cat, D65_XYZ, Estimate, adaptation_matrix_rgb, delta_e_2000, rgb_to_xyz, xyz_to_lab, xyz_to_uv,
 };
 use eyeadapt_report::{ReportOptions, VideoOutcome, report};
-use eyeadapt_sequencer::adapt::{CSV_HEADER, Reading, csv_row};
+use eyeadapt_sequencer::adapt::{CSV_HEADER, csv_row};
 use eyeadapt_sequencer::manifest::{FrameEntry, Manifest, file_entry};
 use eyeadapt_sequencer::output::{atomic_write_bytes, write_exr, write_png};
-use eyeadapt_sequencer::sequence::frame_name;
+use eyeadapt_sequencer::pipeline::frame_name;
+use eyeadapt_sequencer::settings::RunSettings;
 use eyeadapt_tracer::Frame;
 use glam::{DVec3, Vec3};
 use std::collections::{BTreeMap, HashMap};
@@ -71,12 +72,7 @@ fn write_sequence(
                 Some(w) => Estimate::new(w, 100),
                 None => Estimate::undefined("no_white_pixels"),
             };
-            let r = Reading {
-                estimator: name,
-                estimate,
-                seconds: 0.0,
-            };
-            rows.push_str(&csv_row(f, time, &r, &[], Vec3::ZERO));
+            rows.push_str(&csv_row(f, time, name, &estimate, &[], Vec3::ZERO));
             let rel = format!("frames/{name}/{}", frame_name(f, "png"));
             write_png(&dir.join(&rel), &fr.rgb, W, H, 0.0).unwrap();
             files.push(rel);
@@ -95,15 +91,29 @@ fn write_sequence(
         );
     }
     std::fs::write(dir.join("adaptation.csv"), csv).unwrap();
-    let settings: BTreeMap<String, String> = [
-        ("cat", "cat02"),
-        ("degree", "1"),
-        ("temporal_filters", filters),
-        ("resolution", "8x6"),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_string(), v.to_string()))
-    .collect();
+    let settings = RunSettings {
+        width: W as u32,
+        height: H as u32,
+        spp: 1,
+        max_depth: 8,
+        rr_depth: 5,
+        seed: 0,
+        fps: FPS,
+        cat: Cat::Cat02,
+        degree: 1.0,
+        eye_samples: 100,
+        eye_min_samples: 100,
+        eye_target_std_err_uv: 0.0,
+        eye_common_random_numbers: true,
+        wcam_w: 2.0,
+        temporal_filters: filters
+            .split(',')
+            .filter(|f| !f.is_empty())
+            .map(|f| f.parse().unwrap())
+            .collect(),
+        exposure: 0.0,
+        scene: "synthetic".into(),
+    };
     let m = Manifest {
         format: 1,
         tool: "eyeadapt test".into(),

@@ -17,6 +17,7 @@
 //! cat = "cat02"          # cat02 | cat16 | bradford | vonkries
 //! degree = 1.0           # D; or give adapt_luminance (cd/m²) and surround to compute it
 //! ```
+use crate::estimator::{Estimator, parse_estimator_list};
 use eyeadapt_color::{
     Cat, DegreeModel, DominantBy, DominantOptions, Estimate, FrameAovs, GreyEdgeOptions,
     GreyWorldOptions, LightPower, NcnsOptions, ShadesOfGreyOptions, Surround, WcamOptions,
@@ -30,19 +31,6 @@ use eyeadapt_tracer::{
 use glam::{DMat3, DVec3};
 use serde::Deserialize;
 use std::fmt::Write;
-
-/// Every estimator, in the order rows are written.
-pub const ALL_ESTIMATORS: &[&str] = &[
-    "eye",
-    "eye_fov",
-    "wcam",
-    "ncns",
-    "dominant",
-    "grey_world",
-    "white_patch",
-    "shades_of_grey",
-    "grey_edge",
-];
 
 /// The eye sensor's budget: by default adaptive, 4096 to 16 384 paths per frame, stopping once
 /// the standard error of u′v′ (the length of (σu′, σv′), delta method) is at most 3.4e-4. It is
@@ -132,39 +120,9 @@ impl Default for EstimatorConfig {
     }
 }
 
-/// Parses `all` or a comma-separated list into known estimator names (in canonical order).
-pub fn parse_estimator_list(items: &[String]) -> Result<Vec<&'static str>, String> {
-    let mut wanted = Vec::new();
-    for item in items
-        .iter()
-        .flat_map(|s| s.split(','))
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-    {
-        if item == "all" {
-            wanted.extend(ALL_ESTIMATORS.iter().copied().filter(|e| *e != "eye_fov"));
-        } else if let Some(e) = ALL_ESTIMATORS.iter().find(|e| **e == item) {
-            wanted.push(*e);
-        } else {
-            return Err(format!(
-                "unknown estimator \"{item}\" (known: all, {})",
-                ALL_ESTIMATORS.join(", ")
-            ));
-        }
-    }
-    if wanted.is_empty() {
-        return Err("no estimator selected".into());
-    }
-    Ok(ALL_ESTIMATORS
-        .iter()
-        .copied()
-        .filter(|e| wanted.contains(e))
-        .collect())
-}
-
 impl EstimatorConfig {
     /// Checks every option; returns all problems.
-    pub fn validate(&self) -> Result<Vec<&'static str>, Vec<String>> {
+    pub fn validate(&self) -> Result<Vec<Estimator>, Vec<String>> {
         let mut errors = Vec::new();
         let list = parse_estimator_list(&self.list).map_err(|e| vec![e]);
         if let Err(e) = &list {
@@ -292,7 +250,7 @@ pub fn uv_std_err(mean_rgb: DVec3, cov_rgb: DMat3) -> Option<[f64; 2]> {
 /// One estimator's reading for one frame.
 #[derive(Clone, Debug)]
 pub struct Reading {
-    pub estimator: &'static str,
+    pub estimator: Estimator,
     pub estimate: Estimate,
     /// Wall time this estimator took on this frame.
     pub seconds: f64,
@@ -301,7 +259,7 @@ pub struct Reading {
 /// Runs the listed estimators on a rendered frame.
 #[allow(clippy::too_many_arguments)]
 pub fn estimate_all(
-    list: &[&'static str],
+    list: &[Estimator],
     cfg: &EstimatorConfig,
     data: &SceneData,
     view: &View,
@@ -343,11 +301,11 @@ pub fn estimate_all(
         .map(|&name| {
             let t = std::time::Instant::now();
             let estimate = match name {
-                "eye" => eye_reading(false),
-                "eye_fov" => eye_reading(true),
-                "wcam" => wcam(&aovs, &cfg.wcam),
-                "ncns" => ncns(&aovs, &cfg.ncns),
-                "dominant" => {
+                Estimator::Eye => eye_reading(false),
+                Estimator::EyeFov => eye_reading(true),
+                Estimator::Wcam => wcam(&aovs, &cfg.wcam),
+                Estimator::Ncns => ncns(&aovs, &cfg.ncns),
+                Estimator::Dominant => {
                     let powers: Vec<LightPower> = match cfg.dominant.by {
                         DominantBy::Flux => data.lights.fluxes(),
                         DominantBy::Eye => eye_direct_per_light(data, view, 1024, seed),
@@ -360,11 +318,10 @@ pub fn estimate_all(
                     .collect();
                     dominant(&powers)
                 }
-                "grey_world" => grey_world(&aovs, &cfg.grey_world),
-                "white_patch" => white_patch(&aovs, &cfg.white_patch),
-                "shades_of_grey" => shades_of_grey(&aovs, &cfg.shades_of_grey),
-                "grey_edge" => grey_edge(&aovs, &cfg.grey_edge),
-                other => unreachable!("unknown estimator {other} passed validation"),
+                Estimator::GreyWorld => grey_world(&aovs, &cfg.grey_world),
+                Estimator::WhitePatch => white_patch(&aovs, &cfg.white_patch),
+                Estimator::ShadesOfGrey => shades_of_grey(&aovs, &cfg.shades_of_grey),
+                Estimator::GreyEdge => grey_edge(&aovs, &cfg.grey_edge),
             };
             Reading {
                 estimator: name,
@@ -441,20 +398,21 @@ pub fn white_columns(s: &mut String, xyz: DVec3, valid: bool) {
     }
 }
 
-/// One CSV line (with trailing newline) for a reading.
+/// One CSV line (with trailing newline) for an estimate named `name` (an estimator, or a
+/// derived series); `extra_flags` follow the estimate's own flags.
 pub fn csv_row(
     frame: u32,
     time: f64,
-    r: &Reading,
+    name: &str,
+    e: &Estimate,
     extra_flags: &[&str],
     camera: glam::Vec3,
 ) -> String {
-    let e = &r.estimate;
     let xyz = e.normalized();
     let mut s = String::with_capacity(256);
     let _ = write!(s, "{frame},");
     num(&mut s, time);
-    let _ = write!(s, ",{},", r.estimator);
+    let _ = write!(s, ",{name},");
     let valid = e.is_valid();
     white_columns(&mut s, xyz, valid);
     match e.std_err_uv {
@@ -488,39 +446,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn estimator_lists_parse_in_canonical_order() {
-        let l = parse_estimator_list(&["wcam,eye".into()]).unwrap();
-        assert_eq!(l, vec!["eye", "wcam"]);
-        assert_eq!(
-            parse_estimator_list(&["all".into()]).unwrap().len(),
-            ALL_ESTIMATORS.len() - 1
-        );
-        assert!(
-            parse_estimator_list(&["eye,bogus".into()])
-                .unwrap_err()
-                .contains("bogus")
-        );
-    }
-
-    #[test]
     fn csv_row_has_every_column() {
-        let r = Reading {
-            estimator: "eye",
-            estimate: Estimate::new(eyeadapt_color::D65_XYZ * 3.0, 10),
-            seconds: 0.0,
-        };
-        let row = csv_row(4, 0.5, &r, &[], glam::Vec3::ONE);
+        let e = Estimate::new(eyeadapt_color::D65_XYZ * 3.0, 10);
+        let row = csv_row(4, 0.5, "eye", &e, &[], glam::Vec3::ONE);
         assert_eq!(
             row.trim_end().split(',').count(),
             CSV_HEADER.split(',').count()
         );
         assert!(row.contains(",6505.08"), "{row}");
-        let bad = Reading {
-            estimator: "ncns",
-            estimate: Estimate::undefined(eyeadapt_color::flags::NO_WHITE_PIXELS),
-            seconds: 0.0,
-        };
-        let row = csv_row(4, 0.5, &bad, &["held"], glam::Vec3::ONE);
+        let bad = Estimate::undefined(eyeadapt_color::flags::NO_WHITE_PIXELS);
+        let row = csv_row(4, 0.5, "ncns", &bad, &["held"], glam::Vec3::ONE);
         assert_eq!(
             row.trim_end().split(',').count(),
             CSV_HEADER.split(',').count()

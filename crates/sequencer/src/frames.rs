@@ -88,6 +88,57 @@ impl FrameSet {
         self.frames.binary_search(&frame).is_ok()
     }
 
+    pub fn iter(&self) -> impl Iterator<Item = u32> + '_ {
+        self.frames.iter().copied()
+    }
+
+    pub fn first(&self) -> Option<u32> {
+        self.frames.first().copied()
+    }
+
+    pub fn last(&self) -> Option<u32> {
+        self.frames.last().copied()
+    }
+
+    /// This set narrowed to a selection that must lie inside it (a job's frames and
+    /// `--frames`); `Err` holds the selected frames this set lacks.
+    pub fn narrow(&self, selection: &FrameSet) -> Result<FrameSet, FrameSet> {
+        let outside = selection.minus(self);
+        if outside.is_empty() {
+            Ok(self.intersect(selection))
+        } else {
+            Err(outside)
+        }
+    }
+
+    /// The frames of this set that `other` lacks.
+    pub fn minus(&self, other: &FrameSet) -> FrameSet {
+        FrameSet {
+            frames: self.iter().filter(|f| !other.contains(*f)).collect(),
+        }
+    }
+
+    /// Number of chunks of `chunk_size` frames needed to cover the set.
+    pub fn chunk_count(&self, chunk_size: usize) -> Result<usize, ChunkError> {
+        if chunk_size == 0 {
+            return Err(ChunkError::ZeroChunkSize);
+        }
+        Ok(self.len().div_ceil(chunk_size))
+    }
+
+    /// Chunk `index` of the sorted set: frames `[index·N, min((index+1)·N, len))`.
+    pub fn chunk(&self, chunk_size: usize, index: usize) -> Result<FrameSet, ChunkError> {
+        let chunks = self.chunk_count(chunk_size)?;
+        if index >= chunks {
+            return Err(ChunkError::IndexOutOfRange { index, chunks });
+        }
+        let start = index * chunk_size;
+        let end = (start + chunk_size).min(self.len());
+        Ok(FrameSet {
+            frames: self.frames[start..end].to_vec(),
+        })
+    }
+
     /// The frames present in both sets: a job's frames narrowed by a `--frames` selection.
     pub fn intersect(&self, other: &FrameSet) -> FrameSet {
         // Both lists are sorted, so one merge pass suffices.
@@ -352,25 +403,6 @@ impl fmt::Display for FrameSpecError {
 
 impl std::error::Error for FrameSpecError {}
 
-/// Number of chunks of `chunk_size` frames needed to cover `frame_count` frames.
-pub fn chunk_count(frame_count: usize, chunk_size: usize) -> Result<usize, ChunkError> {
-    if chunk_size == 0 {
-        return Err(ChunkError::ZeroChunkSize);
-    }
-    Ok(frame_count.div_ceil(chunk_size))
-}
-
-/// Chunk `index` of a job's sorted frame list: `frames[index·N .. min((index+1)·N, len)]`.
-pub fn chunk(frames: &[u32], chunk_size: usize, index: usize) -> Result<&[u32], ChunkError> {
-    let chunks = chunk_count(frames.len(), chunk_size)?;
-    if index >= chunks {
-        return Err(ChunkError::IndexOutOfRange { index, chunks });
-    }
-    let start = index * chunk_size;
-    let end = (start + chunk_size).min(frames.len());
-    Ok(&frames[start..end])
-}
-
 /// Parses a chunk index given as text, typically `$SLURM_ARRAY_TASK_ID`. Surrounding
 /// whitespace is ignored; anything but a non-negative decimal integer is an error.
 pub fn parse_chunk_index(text: &str) -> Result<usize, ChunkError> {
@@ -427,6 +459,27 @@ mod tests {
             Ok(set) => set.into_vec(),
             Err(e) => panic!("{spec:?} should parse: {e}"),
         }
+    }
+
+    fn chunk(frames: &[u32], size: usize, index: usize) -> Result<Vec<u32>, ChunkError> {
+        FrameSet::from_frames(frames.iter().copied())
+            .chunk(size, index)
+            .map(FrameSet::into_vec)
+    }
+
+    fn chunk_count(frames: usize, size: usize) -> Result<usize, ChunkError> {
+        FrameSet::from_frames(0..frames as u32).chunk_count(size)
+    }
+
+    #[test]
+    fn narrow_names_the_frames_outside() {
+        let job = FrameSet::from_frames(0..10);
+        let sel: FrameSet = "2-4,8".parse().unwrap();
+        assert_eq!(job.narrow(&sel).unwrap().as_slice(), &[2, 3, 4, 8]);
+        let wide: FrameSet = "8-12".parse().unwrap();
+        assert_eq!(job.narrow(&wide).unwrap_err().as_slice(), &[10, 11, 12]);
+        assert_eq!(job.first(), Some(0));
+        assert_eq!(job.last(), Some(9));
     }
 
     fn error(spec: &str) -> String {
@@ -771,7 +824,7 @@ mod tests {
                 );
                 // Chunks are contiguous and in order, so concatenation reproduces the list
                 // exactly: no frame lost, none rendered twice.
-                joined.extend_from_slice(part);
+                joined.extend_from_slice(&part);
             }
             assert_eq!(joined, frames, "{spec} size {size}");
             assert!(chunk(&frames, size, count).is_err());

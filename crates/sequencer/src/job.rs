@@ -35,9 +35,11 @@
 //! Unknown keys are errors. Every problem is reported as `file:line:col: message`.
 use crate::adapt::{AdaptationConfig, AdaptationSettings, EstimatorConfig};
 use crate::error::Failure;
+use crate::estimator::Estimator;
 use crate::frames::FrameSet;
+use crate::pipeline::{Outputs, Pipeline, Sampling};
 use eyeadapt_scene::{CameraPath, Scene, SourceMap};
-use eyeadapt_tracer::{PathSettings, View};
+use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View};
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -81,36 +83,10 @@ pub struct TemporalTable {
     pub filters: Vec<String>,
 }
 
-/// Which files each frame writes.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Hash)]
-#[serde(deny_unknown_fields, default)]
-pub struct Outputs {
-    pub raw_exr: bool,
-    pub raw_png: bool,
-    pub adapted_png: bool,
-    pub adapted_exr: bool,
-}
-
-impl Default for Outputs {
-    fn default() -> Self {
-        Outputs {
-            raw_exr: true,
-            raw_png: true,
-            adapted_png: true,
-            adapted_exr: false,
-        }
-    }
-}
-
 /// Settings given on the command line; they override the job file and enter the job hash.
 #[derive(Clone, Debug, Default)]
 pub struct JobOverrides {
-    pub width: Option<u32>,
-    pub height: Option<u32>,
-    pub spp: Option<u32>,
-    pub max_depth: Option<i32>,
-    pub rr_depth: Option<u32>,
-    pub seed: Option<u64>,
+    pub sampling: Sampling,
     pub eye_samples: Option<u32>,
 }
 
@@ -127,7 +103,7 @@ pub struct Job {
     pub path_settings: PathSettings,
     pub seed: u64,
     pub exposure: f32,
-    pub estimators: Vec<&'static str>,
+    pub estimators: Vec<Estimator>,
     pub estimator_config: EstimatorConfig,
     pub adaptation: AdaptationSettings,
     pub temporal: TemporalTable,
@@ -159,6 +135,22 @@ impl Job {
 
     pub fn time(&self, f: u32) -> f64 {
         self.path.frame_time(f as usize)
+    }
+
+    /// The frame pipeline of this job over the scene's render data.
+    pub fn pipeline<'a>(&'a self, data: &'a SceneData) -> Pipeline<'a> {
+        Pipeline {
+            data,
+            settings: RenderSettings {
+                spp: self.spp,
+                path: self.path_settings,
+                seed: self.seed,
+                frame: 0,
+            },
+            estimators: &self.estimators,
+            config: &self.estimator_config,
+            adaptation: &self.adaptation,
+        }
     }
 }
 
@@ -200,6 +192,33 @@ fn looks_like_scene_file(text: &str) -> bool {
         .is_ok_and(|t| !t.contains_key("scene") && SCENE_KEYS.iter().any(|k| t.contains_key(*k)))
 }
 
+/// Problems found while checking a job file, each located `file:line:col`.
+struct Problems<'a> {
+    map: SourceMap<'a>,
+    errors: Vec<String>,
+}
+
+impl Problems<'_> {
+    fn at(&mut self, offset: usize, msg: String) {
+        self.errors.push(self.map.error(offset, msg).to_string());
+    }
+
+    /// An integer setting `render.<what>` in `lo..=hi` (`max_depth` also takes -1).
+    fn int(&mut self, v: Option<&Spanned<i64>>, what: &str, lo: i64, hi: i64) -> Option<i64> {
+        let v = v?;
+        let x = *v.get_ref();
+        if (lo..=hi).contains(&x) || (what == "max_depth" && x == -1) {
+            Some(x)
+        } else {
+            self.at(
+                v.span().start,
+                format!("render.{what} {x} must be between {lo} and {hi}"),
+            );
+            None
+        }
+    }
+}
+
 fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<Job, Failure> {
     if looks_like_scene_file(text) {
         return Err(Failure::Input(format!(
@@ -216,229 +235,39 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
                 .to_string(),
         )
     })?;
-    let mut errors: Vec<String> = Vec::new();
-    let err = |errors: &mut Vec<String>, offset: usize, msg: String| {
-        errors.push(map.error(offset, msg).to_string())
+    let mut p = Problems {
+        map,
+        errors: Vec::new(),
     };
-
-    // Scene.
-    let spec = raw.scene.get_ref();
-    let scene_spec = if spec.starts_with("builtin:") {
-        spec.clone()
-    } else {
-        dir.join(spec).display().to_string()
-    };
-    let scene = match eyeadapt_scene::resolve_scene(&scene_spec) {
-        Ok(s) => Some(s),
-        Err(e) => {
-            err(
-                &mut errors,
-                raw.scene.span().start,
-                format!("scene \"{spec}\" failed to load:"),
-            );
-            errors.extend(e.diagnostics.iter().map(|d| format!("  {d}")));
-            None
-        }
-    };
-    // Render settings.
-    let r = raw.render.as_ref();
-    let int = |errors: &mut Vec<String>,
-               v: Option<&Spanned<i64>>,
-               what: &str,
-               lo: i64,
-               hi: i64|
-     -> Option<i64> {
-        let v = v?;
-        let x = *v.get_ref();
-        if (lo..=hi).contains(&x) || (what == "max_depth" && x == -1) {
-            Some(x)
-        } else {
-            errors.push(
-                map.error(
-                    v.span().start,
-                    format!("render.{what} {x} must be between {lo} and {hi}"),
-                )
-                .to_string(),
-            );
-            None
-        }
-    };
-    let width = o.width.or(int(
-        &mut errors,
-        r.and_then(|r| r.width.as_ref()),
-        "width",
-        1,
-        32768,
-    )
-    .map(|v| v as u32));
-    let height = o.height.or(int(
-        &mut errors,
-        r.and_then(|r| r.height.as_ref()),
-        "height",
-        1,
-        32768,
-    )
-    .map(|v| v as u32));
-    let spp = o.spp.or(int(
-        &mut errors,
-        r.and_then(|r| r.spp.as_ref()),
-        "spp",
-        1,
-        1 << 24,
-    )
-    .map(|v| v as u32));
-    let max_depth = o.max_depth.or(int(
-        &mut errors,
-        r.and_then(|r| r.max_depth.as_ref()),
-        "max_depth",
-        1,
-        1024,
-    )
-    .map(|v| v as i32));
-    let rr_depth = o.rr_depth.or(int(
-        &mut errors,
-        r.and_then(|r| r.rr_depth.as_ref()),
-        "rr_depth",
-        1,
-        1024,
-    )
-    .map(|v| v as u32));
-    let exposure = match r.and_then(|r| r.exposure.as_ref()) {
-        Some(e) if e.get_ref().is_finite() && e.get_ref().abs() <= 30.0 => *e.get_ref() as f32,
-        Some(e) => {
-            err(
-                &mut errors,
-                e.span().start,
-                format!(
-                    "render.exposure {} must be a finite number of stops in [-30, 30]",
-                    e.get_ref()
-                ),
-            );
-            0.0
-        }
-        None => 0.0,
-    };
-    let seed = match (&o.seed, &raw.seed) {
-        (Some(s), _) => *s,
-        (None, Some(s)) if *s.get_ref() >= 0 => *s.get_ref() as u64,
-        (None, Some(s)) => {
-            err(
-                &mut errors,
-                s.span().start,
-                format!("seed {} must be >= 0", s.get_ref()),
-            );
-            0
-        }
-        (None, None) => scene.as_ref().and_then(|s| s.render.seed).unwrap_or(0),
-    };
-    // Estimators and adaptation.
-    let mut est_cfg = raw
-        .estimators
-        .as_ref()
-        .map(|e| e.get_ref().clone())
-        .unwrap_or_default();
-    if let Some(n) = o.eye_samples {
-        est_cfg.eye.fix_samples(n);
-    }
-    let estimators = match est_cfg.validate() {
-        Ok(l) => l,
-        Err(es) => {
-            let at = raw.estimators.as_ref().map_or(0, |e| e.span().start);
-            for e in es {
-                err(&mut errors, at, e);
-            }
-            Vec::new()
-        }
-    };
-    let adaptation = match raw
-        .adaptation
-        .as_ref()
-        .map(|a| (a.get_ref().resolve(), a.span().start))
-    {
-        Some((Ok(a), _)) => a,
-        Some((Err(e), at)) => {
-            err(&mut errors, at, format!("adaptation: {e}"));
-            AdaptationSettings::default()
-        }
-        None => AdaptationSettings::default(),
-    };
-    let temporal = raw
-        .temporal
-        .as_ref()
-        .map(|t| t.get_ref().clone())
-        .unwrap_or_default();
-    for f in &temporal.filters {
-        if let Err(e) = f.parse::<eyeadapt_color::TemporalFilter>() {
-            let at = raw.temporal.as_ref().map_or(0, |t| t.span().start);
-            err(&mut errors, at, format!("temporal.filters: {e}"));
-        }
-    }
-    // Camera path: the job's, else the scene's.
-    let path = match (
-        &raw.camera_path,
-        scene.as_ref().and_then(|s| s.camera_path.clone()),
-    ) {
-        (Some(v), _) => parse_path(v.get_ref().clone(), &map, v.span().start, &mut errors),
-        (None, Some((v, line, col))) => match path_from_toml(v) {
-            Ok(p) => Some(p),
-            Err(es) => {
-                errors.extend(
-                    es.iter()
-                        .map(|e| format!("{}:{line}:{col}: error: camera_path: {e}", scene_spec)),
-                );
-                None
-            }
-        },
-        (None, None) => {
-            if scene.is_some() {
-                err(
-                    &mut errors,
-                    0,
-                    "the job has no [camera_path] and its scene defines none".into(),
-                );
-            }
-            None
-        }
-    };
+    let (scene_spec, scene) = load_scene(&raw.scene, dir, &mut p);
+    let (sampling, exposure) = render_table(raw.render.as_ref(), &mut p);
+    let seed = job_seed(o, raw.seed.as_ref(), scene.as_ref(), &mut p);
+    let sampling = o.sampling.or(sampling);
+    let (estimators, estimator_config) = estimators(raw.estimators.as_ref(), o, &mut p);
+    let adaptation = adaptation(raw.adaptation.as_ref(), &mut p);
+    let temporal = temporal(raw.temporal.as_ref(), &mut p);
+    let path = camera_path(
+        raw.camera_path.as_ref(),
+        scene.as_ref(),
+        &scene_spec,
+        &mut p,
+    );
     let (Some(scene), Some(path)) = (scene, path) else {
-        return Err(Failure::Input(errors.join("\n")));
+        return Err(Failure::Input(p.errors.join("\n")));
     };
     let camera = scene.camera.clone();
-    let width = width.or(camera.as_ref().map(|c| c.width)).unwrap_or(320);
-    let height = height.or(camera.as_ref().map(|c| c.height)).unwrap_or(180);
-    let spp = spp.or(scene.render.spp).unwrap_or(16);
-    let path_settings = PathSettings {
-        max_depth: max_depth.or(scene.render.max_depth).unwrap_or(8),
-        rr_depth: rr_depth.or(scene.render.rr_depth).unwrap_or(5),
-    };
-    let mut frames = FrameSet::from_frames(0..path.frame_count() as u32);
-    if let Some(spec) = &raw.frames {
-        match spec.get_ref().parse::<FrameSet>() {
-            Ok(sel) => {
-                let outside: Vec<u32> = sel
-                    .as_slice()
-                    .iter()
-                    .copied()
-                    .filter(|f| !frames.contains(*f))
-                    .collect();
-                if !outside.is_empty() {
-                    err(
-                        &mut errors,
-                        spec.span().start,
-                        format!(
-                            "frames {:?}… lie outside the camera path's 0-{}",
-                            &outside[..outside.len().min(5)],
-                            frames.len().saturating_sub(1)
-                        ),
-                    );
-                }
-                frames = frames.intersect(&sel);
-            }
-            Err(e) => err(&mut errors, spec.span().start, e.to_string()),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(Failure::Input(errors.join("\n")));
+    let width = sampling
+        .width
+        .or(camera.as_ref().map(|c| c.width))
+        .unwrap_or(320);
+    let height = sampling
+        .height
+        .or(camera.as_ref().map(|c| c.height))
+        .unwrap_or(180);
+    let settings = sampling.render_settings(&scene);
+    let frames = job_frames(raw.frames.as_ref(), &path, &mut p);
+    if !p.errors.is_empty() {
+        return Err(Failure::Input(p.errors.join("\n")));
     }
     let name = raw.name.clone().unwrap_or_else(|| {
         Path::new(source)
@@ -452,12 +281,12 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         path,
         width,
         height,
-        spp,
-        path_settings,
+        spp: settings.spp,
+        path_settings: settings.path,
         seed,
         exposure,
         estimators,
-        estimator_config: est_cfg,
+        estimator_config,
         adaptation,
         temporal,
         outputs: raw.outputs.unwrap_or_default(),
@@ -468,6 +297,194 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     Ok(job)
 }
 
+/// The scene's spec as loaded (paths relative to the job file) and the scene, if it loads.
+fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> (String, Option<Scene>) {
+    let given = spec.get_ref();
+    let scene_spec = if given.starts_with("builtin:") {
+        given.clone()
+    } else {
+        dir.join(given).display().to_string()
+    };
+    match eyeadapt_scene::resolve_scene(&scene_spec) {
+        Ok(s) => (scene_spec, Some(s)),
+        Err(e) => {
+            p.at(
+                spec.span().start,
+                format!("scene \"{given}\" failed to load:"),
+            );
+            p.errors
+                .extend(e.diagnostics.iter().map(|d| format!("  {d}")));
+            (scene_spec, None)
+        }
+    }
+}
+
+/// The `[render]` table: sampling (its seed comes from the top-level key) and exposure.
+fn render_table(r: Option<&RenderTable>, p: &mut Problems) -> (Sampling, f32) {
+    let sampling = Sampling {
+        width: p
+            .int(r.and_then(|r| r.width.as_ref()), "width", 1, 32768)
+            .map(|v| v as u32),
+        height: p
+            .int(r.and_then(|r| r.height.as_ref()), "height", 1, 32768)
+            .map(|v| v as u32),
+        spp: p
+            .int(r.and_then(|r| r.spp.as_ref()), "spp", 1, 1 << 24)
+            .map(|v| v as u32),
+        max_depth: p
+            .int(r.and_then(|r| r.max_depth.as_ref()), "max_depth", 1, 1024)
+            .map(|v| v as i32),
+        rr_depth: p
+            .int(r.and_then(|r| r.rr_depth.as_ref()), "rr_depth", 1, 1024)
+            .map(|v| v as u32),
+        seed: None,
+    };
+    let exposure = match r.and_then(|r| r.exposure.as_ref()) {
+        Some(e) if e.get_ref().is_finite() && e.get_ref().abs() <= 30.0 => *e.get_ref() as f32,
+        Some(e) => {
+            p.at(
+                e.span().start,
+                format!(
+                    "render.exposure {} must be a finite number of stops in [-30, 30]",
+                    e.get_ref()
+                ),
+            );
+            0.0
+        }
+        None => 0.0,
+    };
+    (sampling, exposure)
+}
+
+/// The command line's seed, else the job's, else the scene's, else 0.
+fn job_seed(
+    o: &JobOverrides,
+    seed: Option<&Spanned<i64>>,
+    scene: Option<&Scene>,
+    p: &mut Problems,
+) -> u64 {
+    match (o.sampling.seed, seed) {
+        (Some(s), _) => s,
+        (None, Some(s)) if *s.get_ref() >= 0 => *s.get_ref() as u64,
+        (None, Some(s)) => {
+            p.at(s.span().start, format!("seed {} must be >= 0", s.get_ref()));
+            0
+        }
+        (None, None) => scene.and_then(|s| s.render.seed).unwrap_or(0),
+    }
+}
+
+fn estimators(
+    table: Option<&Spanned<EstimatorConfig>>,
+    o: &JobOverrides,
+    p: &mut Problems,
+) -> (Vec<Estimator>, EstimatorConfig) {
+    let mut cfg = table.map(|e| e.get_ref().clone()).unwrap_or_default();
+    if let Some(n) = o.eye_samples {
+        cfg.eye.fix_samples(n);
+    }
+    let list = match cfg.validate() {
+        Ok(l) => l,
+        Err(es) => {
+            let at = table.map_or(0, |e| e.span().start);
+            for e in es {
+                p.at(at, e);
+            }
+            Vec::new()
+        }
+    };
+    (list, cfg)
+}
+
+fn adaptation(table: Option<&Spanned<AdaptationConfig>>, p: &mut Problems) -> AdaptationSettings {
+    match table.map(|a| (a.get_ref().resolve(), a.span().start)) {
+        Some((Ok(a), _)) => a,
+        Some((Err(e), at)) => {
+            p.at(at, format!("adaptation: {e}"));
+            AdaptationSettings::default()
+        }
+        None => AdaptationSettings::default(),
+    }
+}
+
+fn temporal(table: Option<&Spanned<TemporalTable>>, p: &mut Problems) -> TemporalTable {
+    let temporal = table.map(|t| t.get_ref().clone()).unwrap_or_default();
+    for f in &temporal.filters {
+        if let Err(e) = f.parse::<eyeadapt_color::TemporalFilter>() {
+            let at = table.map_or(0, |t| t.span().start);
+            p.at(at, format!("temporal.filters: {e}"));
+        }
+    }
+    temporal
+}
+
+/// The job's camera path, else the scene's.
+fn camera_path(
+    table: Option<&Spanned<toml::Value>>,
+    scene: Option<&Scene>,
+    scene_spec: &str,
+    p: &mut Problems,
+) -> Option<CameraPath> {
+    match (table, scene.and_then(|s| s.camera_path.clone())) {
+        (Some(v), _) => match path_from_toml(v.get_ref().clone()) {
+            Ok(path) => Some(path),
+            Err(es) => {
+                for e in es {
+                    p.at(v.span().start, format!("camera_path: {e}"));
+                }
+                None
+            }
+        },
+        (None, Some((v, line, col))) => match path_from_toml(v) {
+            Ok(path) => Some(path),
+            Err(es) => {
+                p.errors.extend(
+                    es.iter()
+                        .map(|e| format!("{scene_spec}:{line}:{col}: error: camera_path: {e}")),
+                );
+                None
+            }
+        },
+        (None, None) => {
+            if scene.is_some() {
+                p.at(
+                    0,
+                    "the job has no [camera_path] and its scene defines none".into(),
+                );
+            }
+            None
+        }
+    }
+}
+
+/// Every frame of the camera path, narrowed by the job's `frames` key.
+fn job_frames(spec: Option<&Spanned<String>>, path: &CameraPath, p: &mut Problems) -> FrameSet {
+    let all = FrameSet::from_frames(0..path.frame_count() as u32);
+    let Some(spec) = spec else {
+        return all;
+    };
+    match spec.get_ref().parse::<FrameSet>() {
+        Ok(sel) => match all.narrow(&sel) {
+            Ok(frames) => frames,
+            Err(outside) => {
+                let first: Vec<u32> = outside.iter().take(5).collect();
+                p.at(
+                    spec.span().start,
+                    format!(
+                        "frames {first:?}… lie outside the camera path's 0-{}",
+                        all.len().saturating_sub(1)
+                    ),
+                );
+                all
+            }
+        },
+        Err(e) => {
+            p.at(spec.span().start, e.to_string());
+            all
+        }
+    }
+}
+
 /// Deserialises and validates a `[camera_path]` table; every problem as a message.
 fn path_from_toml(v: toml::Value) -> Result<CameraPath, Vec<String>> {
     let path: CameraPath = v
@@ -476,24 +493,6 @@ fn path_from_toml(v: toml::Value) -> Result<CameraPath, Vec<String>> {
     path.validate()
         .map_err(|ps| ps.iter().map(|p| p.to_string()).collect::<Vec<_>>())?;
     Ok(path)
-}
-
-fn parse_path(
-    v: toml::Value,
-    map: &SourceMap,
-    at: usize,
-    errors: &mut Vec<String>,
-) -> Option<CameraPath> {
-    match path_from_toml(v) {
-        Ok(p) => Some(p),
-        Err(es) => {
-            errors.extend(
-                es.iter()
-                    .map(|e| map.error(at, format!("camera_path: {e}")).to_string()),
-            );
-            None
-        }
-    }
 }
 
 /// Fingerprint of everything that changes the rendered bits. Thread count, frame selection,
@@ -510,7 +509,11 @@ pub fn job_hash(job: &Job) -> String {
     ));
     h.update(format!(
         "{:?}\n{:?}\n{:?}\n{:?}\n",
-        job.estimators, job.estimator_config, job.adaptation, job.temporal
+        // The names, as the hash has always covered them.
+        job.estimators.iter().map(|e| e.name()).collect::<Vec<_>>(),
+        job.estimator_config,
+        job.adaptation,
+        job.temporal
     ));
     let s = &job.scene;
     for m in &s.meshes {

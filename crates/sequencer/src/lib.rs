@@ -6,18 +6,21 @@
 
 pub mod adapt;
 mod error;
+pub mod estimator;
 pub mod frames;
 pub mod job;
 pub mod manifest;
 pub mod merge;
 pub mod output;
+pub mod pipeline;
 pub mod progress;
 pub mod resources;
 pub mod sequence;
+pub mod settings;
 pub mod still;
 
 pub use crate::error::Failure;
+pub use crate::estimator::Estimator;
 pub use crate::frames::{
-    ChunkError, FrameSet, FrameSpecError, FrameSpecErrorKind, MAX_FRAMES, chunk, chunk_count,
-    parse_chunk_index,
+    ChunkError, FrameSet, FrameSpecError, FrameSpecErrorKind, MAX_FRAMES, parse_chunk_index,
 };

@@ -4,6 +4,7 @@
 //! resumed run produces the same manifest bytes as an uninterrupted one.
 use crate::error::Failure;
 use crate::output::atomic_write_bytes;
+use crate::settings::RunSettings;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -46,8 +47,8 @@ pub struct Manifest {
     pub estimators: Vec<String>,
     pub fps: f64,
     /// The resolved job settings (resolution, spp, depths, seed, CAT, D, eye samples,
-    /// temporal filters…) as text, for reports.
-    pub settings: BTreeMap<String, String>,
+    /// temporal filters…), for reports.
+    pub settings: RunSettings,
     pub frames: BTreeMap<u32, FrameEntry>,
 }
 
@@ -131,39 +132,5 @@ impl Manifest {
                 std::fs::metadata(&p).is_ok_and(|m| m.len() == fe.bytes)
             }
         })
-    }
-}
-
-/// Compact frame spec of a sorted list (`0-9,12,14-20`).
-pub fn frames_to_spec(frames: &[u32]) -> String {
-    let mut out: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < frames.len() {
-        let start = frames[i];
-        let mut j = i;
-        while j + 1 < frames.len() && frames[j + 1] == frames[j] + 1 {
-            j += 1;
-        }
-        out.push(if j == i {
-            format!("{start}")
-        } else {
-            format!("{start}-{}", frames[j])
-        });
-        i = j + 1;
-    }
-    out.join(",")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn spec_round_trips() {
-        let f = [0, 1, 2, 5, 7, 8, 9, 20];
-        let s = frames_to_spec(&f);
-        assert_eq!(s, "0-2,5,7-9,20");
-        assert_eq!(s.parse::<crate::frames::FrameSet>().unwrap().as_slice(), &f);
-        assert_eq!(frames_to_spec(&[]), "");
     }
 }

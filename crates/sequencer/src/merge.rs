@@ -4,7 +4,8 @@
 //! different job hashes, the same frame rendered differently in two places, and gaps in the
 //! job's frame selection. Files are hard-linked when possible, else copied (atomically).
 use crate::error::Failure;
-use crate::manifest::{FrameEntry, Manifest, frames_to_spec};
+use crate::frames::FrameSet;
+use crate::manifest::{FrameEntry, Manifest};
 use crate::output::atomic_write;
 use crate::sequence::{lock_dir, sync_csv};
 use std::collections::BTreeMap;
@@ -105,7 +106,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeSummary, Failure> {
         return Err(Failure::Input(format!(
             "gap: {} frame(s) of the job's selection are in no input: {}",
             missing.len(),
-            frames_to_spec(&missing)
+            FrameSet::from_frames(missing)
         )));
     }
     crate::still::prepare_out_dir(out)?;

@@ -10,14 +10,16 @@
 //! is rebuilt from the committed frames' row files if it holds anything else (rows of the
 //! frame that was in flight when a run was killed). A job whose hash differs from the
 //! directory's manifest is refused unless `--force`.
-use crate::adapt::{CSV_HEADER, Reading, apply, cat_matrix, csv_row, estimate_all, white_for_cat};
+use crate::adapt::CSV_HEADER;
 use crate::error::Failure;
-use crate::frames::{FrameSet, chunk, chunk_count};
+use crate::frames::FrameSet;
 use crate::job::Job;
-use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry, frames_to_spec};
-use crate::output::{atomic_write_bytes, write_exr, write_png};
+use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry};
+use crate::output::atomic_write_bytes;
+use crate::pipeline::{FrameResult, Layout, WriteSpec, frame_name, write_images};
 use crate::progress::{LogFormat, Progress};
-use eyeadapt_tracer::{Frame, RenderSettings, SceneData, render};
+use crate::settings::RunSettings;
+use eyeadapt_tracer::SceneData;
 use std::fs::OpenOptions;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -48,51 +50,41 @@ pub struct SequenceSummary {
     pub complete: bool,
 }
 
-/// (frames this run is responsible for, the job's whole selection).
+/// (frames this run is responsible for, the job's whole selection): the job's frames
+/// narrowed by `selection`, then chunk `(size, index)` of them.
 pub fn plan_frames(
     job: &Job,
     selection: Option<&FrameSet>,
     chunk_spec: Option<(usize, usize)>,
-) -> Result<(Vec<u32>, Vec<u32>), Failure> {
+) -> Result<(FrameSet, FrameSet), Failure> {
     let all = match selection {
-        Some(sel) => {
-            let outside: Vec<u32> = sel
-                .as_slice()
-                .iter()
-                .copied()
-                .filter(|f| !job.frames.contains(*f))
-                .collect();
-            if !outside.is_empty() {
-                return Err(Failure::Input(format!(
-                    "--frames selects {} frame(s) outside the job's frames {} (first: {})",
-                    outside.len(),
-                    frames_to_spec(job.frames.as_slice()),
-                    outside[0]
-                )));
-            }
-            job.frames.intersect(sel)
-        }
+        Some(sel) => job.frames.narrow(sel).map_err(|outside| {
+            Failure::Input(format!(
+                "--frames selects {} frame(s) outside the job's frames {} (first: {})",
+                outside.len(),
+                job.frames,
+                outside.first().unwrap_or_default()
+            ))
+        })?,
         None => job.frames.clone(),
     };
     if all.is_empty() {
         return Err(Failure::Input("the frame selection is empty".into()));
     }
     let planned = match chunk_spec {
-        Some((size, index)) => chunk(all.as_slice(), size, index)
-            .map_err(|e| Failure::Input(e.to_string()))?
-            .to_vec(),
-        None => all.as_slice().to_vec(),
+        Some((size, index)) => all
+            .chunk(size, index)
+            .map_err(|e| Failure::Input(e.to_string()))?,
+        None => all.clone(),
     };
-    Ok((planned, all.into_vec()))
+    Ok((planned, all))
 }
 
 /// Number of chunks of `size` for the selection (for `eyeadapt plan`).
-pub fn plan_chunks(frames: usize, size: usize) -> Result<usize, Failure> {
-    chunk_count(frames, size).map_err(|e| Failure::Input(e.to_string()))
-}
-
-pub fn frame_name(f: u32, ext: &str) -> String {
-    format!("frame_{f:06}.{ext}")
+pub fn plan_chunks(frames: &FrameSet, size: usize) -> Result<usize, Failure> {
+    frames
+        .chunk_count(size)
+        .map_err(|e| Failure::Input(e.to_string()))
 }
 
 /// Holds an exclusive lock on the output directory for the life of the run.
@@ -166,54 +158,20 @@ pub fn sync_csv(dir: &Path, m: &Manifest) -> Result<bool, Failure> {
     Ok(true)
 }
 
-fn new_manifest(job: &Job, planned: &[u32], all: &[u32]) -> Manifest {
+fn new_manifest(job: &Job, planned: &FrameSet, all: &FrameSet) -> Manifest {
     Manifest {
         format: 1,
         tool: format!("eyeadapt {}", env!("CARGO_PKG_VERSION")),
         job_name: job.name.clone(),
         job_source: job.source.clone(),
         job_hash: job.hash.clone(),
-        planned: frames_to_spec(planned),
-        job_frames: frames_to_spec(all),
+        planned: planned.to_string(),
+        job_frames: all.to_string(),
         estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
         fps: job.path.fps,
-        settings: job_settings(job),
+        settings: RunSettings::of_job(job),
         frames: Default::default(),
     }
-}
-
-/// The job's resolved settings as text, recorded in the manifest for reports.
-pub fn job_settings(job: &Job) -> std::collections::BTreeMap<String, String> {
-    let mut s = std::collections::BTreeMap::new();
-    let mut put = |k: &str, v: String| {
-        s.insert(k.to_string(), v);
-    };
-    put("resolution", format!("{}x{}", job.width, job.height));
-    put("spp", job.spp.to_string());
-    put("max_depth", job.path_settings.max_depth.to_string());
-    put("rr_depth", job.path_settings.rr_depth.to_string());
-    put("seed", job.seed.to_string());
-    put("fps", job.path.fps.to_string());
-    put("cat", job.adaptation.cat.to_string());
-    put("degree", job.adaptation.degree.to_string());
-    put("eye_samples", job.estimator_config.eye.samples.to_string());
-    put(
-        "eye_min_samples",
-        job.estimator_config.eye.min_samples().to_string(),
-    );
-    put(
-        "eye_target_std_err_uv",
-        job.estimator_config.eye.target_std_err_uv.to_string(),
-    );
-    put(
-        "eye_common_random_numbers",
-        job.estimator_config.eye.common_random_numbers.to_string(),
-    );
-    put("wcam_w", job.estimator_config.wcam.w.to_string());
-    put("temporal_filters", job.temporal.filters.join(","));
-    put("exposure", job.exposure.to_string());
-    put("scene", job.scene.source.display().to_string());
-    s
 }
 
 /// Renders the planned frames of `job` into `o.out`.
@@ -232,8 +190,8 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     remove_stale_temps(&o.out)?;
     let mut m = match Manifest::load(&o.out)? {
         Some(m) if m.job_hash == job.hash => Manifest {
-            planned: frames_to_spec(&planned),
-            job_frames: frames_to_spec(&all),
+            planned: planned.to_string(),
+            job_frames: all.to_string(),
             ..m
         },
         Some(m) if !o.force => {
@@ -251,21 +209,20 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         _ => new_manifest(job, &planned, &all),
     };
     // Forget frames whose files are gone or damaged; they will be rendered again.
-    let damaged: Vec<u32> = m
-        .frames
-        .keys()
-        .copied()
-        .filter(|f| !m.frame_intact(&o.out, *f, o.verify))
-        .collect();
-    for f in &damaged {
-        m.frames.remove(f);
+    let damaged = FrameSet::from_frames(
+        m.frames
+            .keys()
+            .copied()
+            .filter(|f| !m.frame_intact(&o.out, *f, o.verify)),
+    );
+    for f in damaged.iter() {
+        m.frames.remove(&f);
     }
     m.save(&o.out)?;
     sync_csv(&o.out, &m)?;
 
     let todo: Vec<u32> = planned
         .iter()
-        .copied()
         .filter(|f| !m.frames.contains_key(f))
         .collect();
     let mut summary = SequenceSummary {
@@ -278,7 +235,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         progress.note(&format!(
             "re-rendering {} frame(s) whose files were missing or damaged: {}",
             damaged.len(),
-            frames_to_spec(&damaged)
+            damaged
         ));
     }
     if summary.skipped > 0 {
@@ -293,7 +250,8 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         for (i, &f) in todo.iter().enumerate() {
             progress.frame_started(f, i);
             let t = Instant::now();
-            let (entry, readings, frame) = render_frame(job, &data, f, &o.out, &progress)?;
+            let (entry, r) = render_frame(job, &data, f, &o.out, &progress)?;
+            let (readings, frame) = (&r.readings, &r.image);
             let rows = std::fs::read(o.out.join("rows").join(frame_name(f, "csv")))
                 .map_err(|e| Failure::io("cannot read back rows", &o.out, &e))?;
             let csv = o.out.join(CSV);
@@ -316,7 +274,10 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             summary.rendered += 1;
             summary.render_seconds += frame.stats.seconds;
             let total = t.elapsed().as_secs_f64();
-            let msg = match readings.iter().find(|r| r.estimator == "eye") {
+            let msg = match readings
+                .iter()
+                .find(|r| r.estimator == crate::Estimator::Eye)
+            {
                 Some(r) => {
                     let uv = r.estimate.uv().map_or("undefined".into(), |uv| {
                         format!("({:.4}, {:.4})", uv.x, uv.y)
@@ -341,7 +302,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     // Rows appended in a resumed run may follow frames committed later by another order:
     // leave the CSV sorted by frame.
     sync_csv(&o.out, &m)?;
-    summary.complete = all.iter().all(|f| m.frames.contains_key(f));
+    summary.complete = all.iter().all(|f| m.frames.contains_key(&f));
     summary.seconds = start.elapsed().as_secs_f64();
     Ok(summary)
 }
@@ -358,105 +319,37 @@ fn append(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure::io("cannot sync", path, &e))
 }
 
-/// Renders and writes one frame; returns its manifest entry.
+/// Renders and writes one frame through the pipeline; returns its manifest entry.
 fn render_frame(
     job: &Job,
     data: &SceneData,
     f: u32,
     out: &Path,
     progress: &Progress,
-) -> Result<(FrameEntry, Vec<Reading>, Frame), Failure> {
-    let view = job.view(f);
-    let settings = RenderSettings {
-        spp: job.spp,
-        path: job.path_settings,
-        seed: job.seed,
-        frame: f,
-    };
-    let frame = render(data, &view, &settings);
-    let readings = estimate_all(
-        &job.estimators,
-        &job.estimator_config,
-        data,
-        &view,
-        &frame,
-        f,
-        job.seed,
-        job.path_settings,
-    );
+) -> Result<(FrameEntry, FrameResult), Failure> {
+    let r = job.pipeline(data).run(f, job.time(f), job.view(f));
     let mut files: Vec<String> = Vec::new();
-    let save = |rel: String, files: &mut Vec<String>| {
+    let spec = WriteSpec {
+        layout: Layout::Sequence,
+        outputs: job.outputs,
+        exposure: job.exposure,
+        adaptation: &job.adaptation,
+    };
+    write_images(out, &r, &spec, |rel| {
         progress.saved(&out.join(&rel));
         files.push(rel);
-    };
-    if job.outputs.raw_exr {
-        let rel = format!("frames/raw/{}", frame_name(f, "exr"));
-        write_exr(&out.join(&rel), &frame)?;
-        save(rel, &mut files);
-    }
-    if job.outputs.raw_png {
-        let rel = format!("frames/raw/{}", frame_name(f, "png"));
-        write_png(
-            &out.join(&rel),
-            &frame.rgb,
-            frame.width,
-            frame.height,
-            job.exposure,
-        )?;
-        save(rel, &mut files);
-    }
-    let time = job.time(f);
-    let mut rows = String::new();
-    for r in &readings {
-        // Undefined whites adapt with D65 (never the previous frame's white), so that every
-        // frame's output depends on that frame alone and chunked runs match whole runs.
-        let (white, held) = white_for_cat(&r.estimate, eyeadapt_color::D65_XYZ);
-        let mut extra: Vec<&str> = Vec::new();
-        if held {
-            extra.push("held_d65");
-        }
-        if frame.stats.invalid_samples > 0 {
-            extra.push("image_nan_dropped");
-        }
-        rows.push_str(&csv_row(f, time, r, &extra, view.position));
-        if job.outputs.adapted_png || job.outputs.adapted_exr {
-            let adapted = apply(cat_matrix(white, &job.adaptation), &frame.rgb);
-            if job.outputs.adapted_png {
-                let rel = format!("frames/{}/{}", r.estimator, frame_name(f, "png"));
-                write_png(
-                    &out.join(&rel),
-                    &adapted,
-                    frame.width,
-                    frame.height,
-                    job.exposure,
-                )?;
-                save(rel, &mut files);
-            }
-            if job.outputs.adapted_exr {
-                let rel = format!("frames/{}/{}", r.estimator, frame_name(f, "exr"));
-                let af = Frame {
-                    rgb: adapted,
-                    ..frame.clone()
-                };
-                write_exr(&out.join(&rel), &af)?;
-                save(rel, &mut files);
-            }
-        }
-    }
+    })?;
     let rel = format!("rows/{}", frame_name(f, "csv"));
-    atomic_write_bytes(&out.join(&rel), rows.as_bytes())?;
+    atomic_write_bytes(&out.join(&rel), r.rows().as_bytes())?;
     files.push(rel);
     let entries: Vec<FileEntry> = files
         .iter()
-        .map(|r| file_entry(out, r))
+        .map(|rel| file_entry(out, rel))
         .collect::<Result<_, _>>()?;
-    Ok((
-        FrameEntry {
-            time_s: time,
-            files: entries,
-            invalid_samples: frame.stats.invalid_samples,
-        },
-        readings,
-        frame,
-    ))
+    let entry = FrameEntry {
+        time_s: r.time,
+        files: entries,
+        invalid_samples: r.image.stats.invalid_samples,
+    };
+    Ok((entry, r))
 }

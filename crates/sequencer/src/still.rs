@@ -1,20 +1,21 @@
 //! `eyeadapt render`: one still frame of a scene with its outputs.
+use crate::adapt::{AdaptationSettings, CSV_HEADER, EstimatorConfig};
 use crate::error::Failure;
-use crate::output::{write_exr, write_png};
+use crate::estimator::Estimator;
+use crate::manifest::CSV;
+use crate::output::atomic_write_bytes;
+use crate::pipeline::{
+    FileKind, FrameResult, Layout, Outputs, Pipeline, Sampling, WriteSpec, write_images,
+};
 use eyeadapt_scene::Scene;
-use eyeadapt_tracer::{Frame, PathSettings, RenderSettings, SceneData, View, render};
+use eyeadapt_tracer::{RenderSettings, SceneData, View};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Command-line overrides of what the scene file suggests.
 #[derive(Clone, Debug, Default)]
 pub struct StillOptions {
-    pub spp: Option<u32>,
-    pub width: Option<u32>,
-    pub height: Option<u32>,
-    pub max_depth: Option<i32>,
-    pub rr_depth: Option<u32>,
-    pub seed: Option<u64>,
+    pub sampling: Sampling,
     pub exposure: f32,
     pub out: PathBuf,
 }
@@ -28,27 +29,18 @@ pub fn resolve(scene: &Scene, o: &StillOptions) -> Result<(View, RenderSettings)
         ))
     })?;
     let mut view = View::from_camera(camera);
-    if let Some(w) = o.width {
+    if let Some(w) = o.sampling.width {
         view.width = w;
     }
-    if let Some(h) = o.height {
+    if let Some(h) = o.sampling.height {
         view.height = h;
     }
-    let settings = RenderSettings {
-        spp: o.spp.or(scene.render.spp).unwrap_or(64),
-        path: PathSettings {
-            max_depth: o.max_depth.or(scene.render.max_depth).unwrap_or(8),
-            rr_depth: o.rr_depth.or(scene.render.rr_depth).unwrap_or(5),
-        },
-        seed: o.seed.or(scene.render.seed).unwrap_or(0),
-        frame: 0,
-    };
-    Ok((view, settings))
+    Ok((view, o.sampling.render_settings(scene)))
 }
 
 pub struct StillResult {
-    pub frame: Frame,
-    pub view: View,
+    /// Frame 0 of the pipeline, with the readings of the estimators asked for.
+    pub frame: FrameResult,
     pub settings: RenderSettings,
     pub data: SceneData,
     pub bvh_seconds: f64,
@@ -56,8 +48,16 @@ pub struct StillResult {
     pub preview: PathBuf,
 }
 
-/// Renders the still and writes `raw.exr` and `preview.png` into `o.out`.
-pub fn render_still(scene: &Scene, o: &StillOptions) -> Result<StillResult, Failure> {
+/// Renders the still through the frame pipeline and writes `raw.exr`, `preview.png` and,
+/// when `estimators` is not empty, `adapted_<estimator>.png` and `adaptation.csv` into
+/// `o.out`.
+pub fn render_still(
+    scene: &Scene,
+    o: &StillOptions,
+    estimators: &[Estimator],
+    config: &EstimatorConfig,
+    adaptation: &AdaptationSettings,
+) -> Result<StillResult, Failure> {
     let (view, settings) = resolve(scene, o)?;
     crate::resources::check_render(
         &format!("rendering {}", scene.source.display()),
@@ -68,25 +68,43 @@ pub fn render_still(scene: &Scene, o: &StillOptions) -> Result<StillResult, Fail
     let t = Instant::now();
     let data = SceneData::new(scene);
     let bvh_seconds = t.elapsed().as_secs_f64();
-    let frame = render(&data, &view, &settings);
-    let exr = o.out.join("raw.exr");
-    let preview = o.out.join("preview.png");
-    write_exr(&exr, &frame)?;
-    write_png(&preview, &frame.rgb, frame.width, frame.height, o.exposure)?;
+    let pipeline = Pipeline {
+        data: &data,
+        settings,
+        estimators,
+        config,
+        adaptation,
+    };
+    let frame = pipeline.run(0, 0.0, view);
+    let spec = WriteSpec {
+        layout: Layout::Still,
+        outputs: Outputs {
+            raw_exr: true,
+            raw_png: true,
+            adapted_png: !estimators.is_empty(),
+            adapted_exr: false,
+        },
+        exposure: o.exposure,
+        adaptation,
+    };
+    write_images(&o.out, &frame, &spec, |_| {})?;
+    if !estimators.is_empty() {
+        let csv = format!("{CSV_HEADER}\n{}", frame.rows());
+        atomic_write_bytes(&o.out.join(CSV), csv.as_bytes())?;
+    }
     Ok(StillResult {
         frame,
-        view,
         settings,
         data,
         bvh_seconds,
-        exr,
-        preview,
+        exr: o.out.join(Layout::Still.path(FileKind::RawExr, 0)),
+        preview: o.out.join(Layout::Still.path(FileKind::RawPng, 0)),
     })
 }
 
 /// `{"seconds":…, "samples":…, "samples_per_second":…, "bvh_seconds":…}`
 pub fn stats_json(r: &StillResult) -> String {
-    let s = &r.frame.stats;
+    let s = &r.frame.image.stats;
     format!(
         "{{\"seconds\": {}, \"samples\": {}, \"samples_per_second\": {}, \"bvh_seconds\": {}, \"invalid_samples\": {}, \"triangles\": {}}}\n",
         s.seconds,
@@ -123,50 +141,4 @@ pub fn prepare_out_dir(dir: &Path) -> Result<(), Failure> {
         )));
     }
     std::fs::create_dir_all(dir).map_err(|e| Failure::io("cannot create output directory", dir, &e))
-}
-
-/// Runs the estimators on a rendered still, writes `adapted_<estimator>.png` and
-/// `adaptation.csv` into `out`, and returns the readings.
-pub fn adapt_still(
-    r: &StillResult,
-    list: &[&'static str],
-    cfg: &crate::adapt::EstimatorConfig,
-    adaptation: &crate::adapt::AdaptationSettings,
-    out: &Path,
-    exposure: f32,
-) -> Result<Vec<crate::adapt::Reading>, Failure> {
-    use crate::adapt::{CSV_HEADER, apply, cat_matrix, csv_row, estimate_all, white_for_cat};
-    let readings = estimate_all(
-        list,
-        cfg,
-        &r.data,
-        &r.view,
-        &r.frame,
-        0,
-        r.settings.seed,
-        r.settings.path,
-    );
-    let mut csv = String::from(CSV_HEADER);
-    csv.push('\n');
-    for reading in &readings {
-        let (white, held) = white_for_cat(&reading.estimate, eyeadapt_color::D65_XYZ);
-        let adapted = apply(cat_matrix(white, adaptation), &r.frame.rgb);
-        write_png(
-            &out.join(format!("adapted_{}.png", reading.estimator)),
-            &adapted,
-            r.frame.width,
-            r.frame.height,
-            exposure,
-        )?;
-        let mut extra = Vec::new();
-        if held {
-            extra.push("held_d65");
-        }
-        if r.frame.stats.invalid_samples > 0 {
-            extra.push("image_nan_dropped");
-        }
-        csv.push_str(&csv_row(0, 0.0, reading, &extra, r.view.position));
-    }
-    crate::output::atomic_write_bytes(&out.join("adaptation.csv"), csv.as_bytes())?;
-    Ok(readings)
 }

@@ -1,0 +1,198 @@
+//! Case 4: statue, red spot (Fig. 9).
+use super::*;
+use crate::RegionMean;
+
+const CLAIM4: &str = "\"The first complex test case consists of a room containing a white Buddha statue lit by a red lightspot and a main white light source located on the ceiling (see figure 9). WCAM computes a red adaptation color because the white statue is partially lit by a red spotlight. Consequently, after chromatic adaptation, the part of the statue lit by the spotlight gets a white color while the part takes a blue color, which looks unnatural. Instead, our method provides a result that looks more natural.\" (§5.2)";
+
+pub(super) fn case4(runs: &[JobRun]) -> (&'static str, Out) {
+    let run = &runs[0];
+    let shot = &run.shots[0];
+    let img = shot.image.as_ref().expect("stills keep their image");
+    let scene = run.scene();
+    let es = ests(run, shot);
+    let mut o = Out::new();
+    let spot = scene
+        .lights
+        .iter()
+        .find_map(|l| match l {
+            Light::Spot {
+                position,
+                direction,
+                cone_deg,
+                ..
+            } => Some((*position, *direction, *cone_deg)),
+            _ => None,
+        })
+        .expect("the statue scene has a spot light");
+    let statue = Region::from_material(scene, "statue", "statue", 0.0);
+    let unlit = statue.clone().facing_away_from(spot.0);
+    let unlit_mean = region_mean(scene, img, &shot.view, &unlit);
+    let lit_px = lit_pixels(scene, shot, &statue, &unlit, spot);
+    let lit_rgb = lit_px
+        .iter()
+        .map(|&i| glam::Vec3::from(img.rgb[i]).as_dvec3())
+        .sum::<DVec3>()
+        / lit_px.len() as f64;
+    let rho = unlit_mean.reflectance;
+    let _ = writeln!(o.md, "**Setup.** {}", setup_line(run));
+    let _ = writeln!(
+        o.md,
+        "Statue reflectance {}; white ceiling light {}; red spot at {} with intensity {}. Read-outs: the statue's unlit side = statue pixels whose normal faces away from the spot ({} pixels); its lit side = statue pixels facing the spot and inside its cone ({} pixels). The expected adaptation colour is not known (§5.2); the main light is D65 white.\n",
+        fmt3(rho),
+        fmt3(light_colour(scene)),
+        fmt3(spot.0.as_dvec3()),
+        scene
+            .lights
+            .iter()
+            .find_map(|l| match l {
+                Light::Spot { intensity, .. } => Some(fmt3(intensity.as_dvec3())),
+                _ => None,
+            })
+            .unwrap_or_default(),
+        unlit_mean.pixels,
+        lit_px.len()
+    );
+    o.metric("unlit.pixels", unlit_mean.pixels as f64);
+    let unlit_e = uv_of_rgb(unlit_mean.irradiance);
+    let ue = hsv_of_linear(unlit_mean.irradiance / unlit_mean.irradiance.max_element());
+    o.metric("unlit.irradiance.hue", ue.h);
+    o.metric("unlit.irradiance.duv_d65", delta_uv(unlit_e, d65_uv()));
+    let _ = writeln!(
+        o.md,
+        "The unlit side's own irradiance (irradiance AOV) has u′v′ = {} (Δu′v′ = {} from D65, hue {:.0}°): the light it receives from the room, including the spot's light reflected by the wall, floor and pedestal.\n",
+        uv_cell(Some(unlit_e)),
+        f(delta_uv(unlit_e, d65_uv()), 5),
+        ue.h
+    );
+    o.metric("lit.pixels", lit_px.len() as f64);
+    estimator_table(&es, &unlit_mean, lit_rgb, &mut o);
+    verdicts(&mut o);
+    (CLAIM4, o)
+}
+
+/// Hue of an estimate's white as linear sRGB normalised to max 1 (0 when undefined).
+fn white_hue(e: &Estimate) -> f64 {
+    if !e.is_valid() {
+        return f64::NAN;
+    }
+    let rgb = xyz_to_rgb(e.normalized());
+    eyeadapt_color::hsv(rgb.max(DVec3::ZERO) / rgb.max_element().max(1e-12)).h
+}
+
+/// The statue's lit side: statue pixels facing the spot and inside its cone.
+fn lit_pixels(
+    scene: &Scene,
+    shot: &Shot,
+    statue: &Region,
+    unlit: &Region,
+    spot: (glam::Vec3, glam::Vec3, f32),
+) -> Vec<usize> {
+    let img = shot.image.as_ref().expect("stills keep their image");
+    let all = crate::measure::region_pixels(scene, img, &shot.view, statue);
+    let away = crate::measure::region_pixels(scene, img, &shot.view, unlit);
+    let basis = shot.view.basis();
+    let cos_cone = spot.2.to_radians().cos();
+    all.into_iter()
+        .filter(|i| !away.contains(i))
+        .filter(|&i| {
+            let (x, y) = (i % img.width, i / img.width);
+            let d = shot.view.ray_dir(basis, x as f32 + 0.5, y as f32 + 0.5);
+            let p = shot.view.position + glam::Vec3::from(d) * img.depth[i];
+            (p - spot.0).normalize().dot(spot.1.normalize()) >= cos_cone
+        })
+        .collect()
+}
+
+/// One row per estimator (its white's hue, the unlit and lit sides after adaptation).
+fn estimator_table(es: &[Est], unlit_mean: &RegionMean, lit_rgb: DVec3, o: &mut Out) {
+    let rho = unlit_mean.reflectance;
+    let d65 = d65_uv();
+    let mut t = Table::new(&[
+        "estimator",
+        "u′v′",
+        "Δu′v′ to D65",
+        "white's hue (linear sRGB)",
+        "unlit side hue",
+        "unlit side S",
+        "lit side hue",
+        "lit side S",
+    ]);
+    let ru = equal_luminance_hsv(unlit_mean.rgb, rho);
+    let rl = equal_luminance_hsv(lit_rgb, rho);
+    t.row(vec![
+        "raw (no adaptation)".into(),
+        "–".into(),
+        "–".into(),
+        "–".into(),
+        hue_cell(ru.h, ru.s),
+        pct(ru.s),
+        hue_cell(rl.h, rl.s),
+        pct(rl.s),
+    ]);
+    for e in es {
+        let u = equal_luminance_hsv(e.m * unlit_mean.rgb, rho);
+        let l = equal_luminance_hsv(e.m * lit_rgb, rho);
+        let d = e.uv().map_or(f64::NAN, |p| delta_uv(p, d65));
+        let wh = white_hue(e.estimate);
+        o.metric(format!("{}.duv_d65", e.name), d);
+        o.metric(format!("{}.white_hue", e.name), wh);
+        o.metric(format!("{}.unlit.hue", e.name), u.h);
+        o.metric(format!("{}.unlit.sat", e.name), u.s);
+        o.metric(format!("{}.lit.hue", e.name), l.h);
+        o.metric(format!("{}.lit.sat", e.name), l.s);
+        t.row(vec![
+            format!("`{}`", e.name),
+            uv_cell(e.uv()),
+            f(d, 5),
+            format!("{:.0}°", wh.round().rem_euclid(360.0)),
+            hue_cell(u.h, u.s),
+            pct(u.s),
+            hue_cell(l.h, l.s),
+            pct(l.s),
+        ]);
+    }
+    o.md.push_str(&t.render());
+}
+
+fn verdicts(o: &mut Out) {
+    let m = o.metrics.clone();
+    let (dw, de) = (m["wcam.duv_d65"], m["eye.duv_d65"]);
+    let wwh = m["wcam.white_hue"];
+    let (wuh, wus) = (m["wcam.unlit.hue"], m["wcam.unlit.sat"]);
+    let eus = m["eye.unlit.sat"];
+    let red = hue_diff(wwh, 0.0).abs() <= 40.0;
+    let v1 = (
+        format!(
+            "WCAM's white: Δu′v′ to D65 = {} (≥ {THETA_JND}: {}), hue of its linear sRGB {:.0}° (within 40° of red 0°: {})",
+            f(dw, 5),
+            yes(dw >= THETA_JND),
+            wwh.round().rem_euclid(360.0),
+            yes(red)
+        ),
+        dw >= THETA_JND && red,
+    );
+    o.verdict("WCAM computes a red adaptation colour", v1.0, v1.1);
+    let blue = (180.0..=260.0).contains(&wuh) && wus >= 0.02;
+    o.verdict(
+        "after WCAM, the statue's unlit side turns blue",
+        format!(
+            "unlit side after WCAM: hue {:.0}° (in [180°, 260°]: {}), S {} (≥ 2 %: {})",
+            wuh,
+            yes((180.0..=260.0).contains(&wuh)),
+            pct(wus),
+            yes(wus >= 0.02)
+        ),
+        blue,
+    );
+    o.verdict(
+        "eye gives a more natural result",
+        format!(
+            "Δu′v′ to D65: eye {} < WCAM {}; unlit (white) side S: eye {} < WCAM {}",
+            f(de, 5),
+            f(dw, 5),
+            pct(eus),
+            pct(wus)
+        ),
+        de < dw && eus < wus,
+    );
+}
