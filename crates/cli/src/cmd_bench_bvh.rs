@@ -5,12 +5,12 @@
 //! …`, is for scripts (`scripts/bench/bvh-scale.sh`).
 use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
-use eyeadapt_tracer::{Accel, BvhBuildParams, InputTri, build_params, hash_key, mix64};
+use eyeadapt_tracer::{
+    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, build_params, hash_key, mix64,
+};
 use glam::Vec3A;
-use obvhs::cwbvh::builder::build_cwbvh_from_tris;
-use obvhs::triangle::Triangle;
 use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// The obvhs presets by the names `--bvh-preset` takes, slowest build last.
 const PRESETS: [(&str, BvhBuildParams); 6] = [
@@ -177,12 +177,73 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     [primary, inside, shadow]
 }
 
+/// The timed builds: the renderer's and obvhs's alone, median and fastest, and the peak RSS
+/// after the first build.
+struct Builds {
+    accel: Accel,
+    times: Vec<f64>,
+    obvhs_times: Vec<f64>,
+    rss_end: Option<u64>,
+}
+
+fn build_runs(
+    mesh: &[InputTri],
+    obvhs_input: &ObvhsBuildInput,
+    params: BvhBuildParams,
+    runs: u32,
+) -> Builds {
+    // Small meshes build in microseconds: repeat them within a timed run so the clock resolves
+    // them (about 100k triangles' worth per run); one build per run from 100k triangles up.
+    let reps = 100_000usize.div_ceil(mesh.len()).clamp(1, 10_000);
+    let mut times = Vec::new();
+    let mut obvhs_times = Vec::new();
+    let mut accel = None;
+    let mut rss_end = None;
+    for run in 0..runs.max(1) {
+        drop(accel.take()); // the previous structure is not part of this build's peak
+        let (s, built) = timed(|| {
+            let mut built = Accel::build_with(mesh, params);
+            for _ in 1..reps {
+                built = Accel::build_with(mesh, params);
+            }
+            built
+        });
+        let s = s / reps as f64;
+        if run == 0 {
+            // Later builds can raise the peak a little through heap fragmentation (the
+            // dropped structure's pages), which a renderer building once never sees.
+            rss_end = peak_rss();
+        }
+        // obvhs alone on the same triangles: the rest of `Accel::build_with` (filtering, the
+        // copy into BVH order, shading data) runs on one thread, so this shows what a preset
+        // can change and what it cannot.
+        let (o, _) = timed(|| {
+            for _ in 0..reps {
+                obvhs_input.build(params);
+            }
+        });
+        let o = o / reps as f64;
+        println!("build {}: {s:.6} s, of which obvhs {o:.6} s", run + 1);
+        times.push(s);
+        obvhs_times.push(o);
+        accel = Some(built);
+    }
+    times.sort_by(f64::total_cmp);
+    obvhs_times.sort_by(f64::total_cmp);
+    Builds {
+        accel: accel.expect("at least one run"),
+        times,
+        obvhs_times,
+        rss_end,
+    }
+}
+
 pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let n = a.bvh_triangles.unwrap_or(1_000_000);
     let rss_start = peak_rss();
     let mesh = terrain(n);
     // For timing obvhs alone; made before the baseline so it does not count as the build's.
-    let obvhs_tris: Vec<Triangle> = mesh.iter().map(InputTri::triangle).collect();
+    let obvhs_input = ObvhsBuildInput::new(&mesh);
     let rss_mesh = peak_rss();
     let params = match a.bvh_preset.as_deref() {
         Some(name) => PRESETS
@@ -198,50 +259,12 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     } else {
         "the renderer's choice for the size"
     };
-
-    // Small meshes build in microseconds: repeat them within a timed run so the clock resolves
-    // them (about 100k triangles' worth per run); one build per run from 100k triangles up.
-    let reps = 100_000usize.div_ceil(mesh.len()).clamp(1, 10_000);
-    let mut times = Vec::new();
-    let mut obvhs_times = Vec::new();
-    let mut accel = None;
-    let mut rss_end = None;
-    for run in 0..a.runs.max(1) {
-        drop(accel.take()); // the previous structure is not part of this build's peak
-        let (s, built) = timed(|| {
-            let mut built = Accel::build_with(&mesh, params);
-            for _ in 1..reps {
-                built = Accel::build_with(&mesh, params);
-            }
-            built
-        });
-        let s = s / reps as f64;
-        if run == 0 {
-            // Later builds can raise the peak a little through heap fragmentation (the
-            // dropped structure's pages), which a renderer building once never sees.
-            rss_end = peak_rss();
-        }
-        // obvhs alone on the same triangles: the rest of `Accel::build_with` (filtering, the
-        // copy into BVH order, shading data) runs on one thread, so this shows what a preset
-        // can change and what it cannot.
-        let (o, _) = timed(|| {
-            for _ in 0..reps {
-                drop(build_cwbvh_from_tris(
-                    &obvhs_tris,
-                    params,
-                    &mut Duration::default(),
-                ));
-            }
-        });
-        let o = o / reps as f64;
-        println!("build {}: {s:.6} s, of which obvhs {o:.6} s", run + 1);
-        times.push(s);
-        obvhs_times.push(o);
-        accel = Some(built);
-    }
-    let accel = accel.expect("at least one run");
-    times.sort_by(f64::total_cmp);
-    obvhs_times.sort_by(f64::total_cmp);
+    let Builds {
+        accel,
+        times,
+        obvhs_times,
+        rss_end,
+    } = build_runs(&mesh, &obvhs_input, params, a.runs);
     let build = times[times.len() / 2];
     let build_min = times[0];
     let obvhs = obvhs_times[obvhs_times.len() / 2];

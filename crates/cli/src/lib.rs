@@ -3,13 +3,21 @@
 //!
 //! Exit codes: 0 done; 2 bad input or usage; 75 transient failure worth a retry; 1 other.
 
+/// `--estimators/--cat/--degree…` into library settings; the table after a render.
 mod adapt_cli;
+/// What the user typed (clap).
 mod args;
+/// `eyeadapt bench`.
 mod cmd_bench;
+/// `eyeadapt bench --bvh-triangles N`.
 mod cmd_bench_bvh;
+/// `eyeadapt paper`.
 mod cmd_paper;
+/// `eyeadapt render`.
 mod cmd_render;
+/// `eyeadapt report`.
 mod cmd_report;
+/// `eyeadapt sequence`, `plan` and `merge`.
 mod cmd_sequence;
 
 use clap::Parser;

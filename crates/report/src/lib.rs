@@ -31,7 +31,7 @@ pub use coherence::{EstimatorReport, Metric};
 pub use series::{Point, Series};
 pub use video::{VideoOutcome, label_strip};
 
-use eyeadapt_color::{DEFAULT_SIGMA_S, DEFAULT_STRIDE};
+use eyeadapt_color::{DEFAULT_SIGMA_S, DEFAULT_STRIDE, TemporalFilter};
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::AdaptationSettings;
 use eyeadapt_sequencer::manifest::{CSV, Manifest};
@@ -89,6 +89,80 @@ fn adaptation_of(m: &Manifest) -> AdaptationSettings {
 
 /// Computes the coherence report of the sequence in `dir`.
 pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure> {
+    let m = checked_manifest(dir, opts)?;
+    let _lock = lock_dir(dir)?;
+    let adaptation = adaptation_of(&m);
+    let presets = series::presets(&m);
+    let mut notes = Vec::new();
+
+    // 1. The CSV.
+    let csv_path = dir.join(CSV);
+    let text = std::fs::read_to_string(&csv_path)
+        .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
+    let committed: BTreeSet<u32> = m.frames.keys().copied().collect();
+    let tab = table::parse(&text, &csv_path, &committed)?;
+    let base = series::base_series(&m, &tab);
+    table_notes(&tab, &base, &mut notes);
+
+    // 2. Filters, and the CSV rewritten with the derived rows.
+    let (all, derived_rows) = filter_and_rewrite(&csv_path, &text, &tab, &base, &presets)?;
+
+    // 3. Metrics.
+    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE)?;
+    let image = match image {
+        Ok(p) => Some(p),
+        Err(why) => {
+            notes.push(format!("image metrics (§7.3) not computed: {why}"));
+            None
+        }
+    };
+    let mut reports = Vec::with_capacity(all.len());
+    for (k, s) in all.iter().enumerate() {
+        reports.push(EstimatorReport {
+            name: s.name.clone(),
+            base: s.base.clone(),
+            filter: s.filter.clone(),
+            series: series::metrics_of(s, m.fps, opts.sigma_s)?,
+            image: image.as_ref().map(|p| p.metrics[k].clone()),
+            steps: series::steps(s),
+        });
+    }
+
+    // 4. Files.
+    let files = write_files(
+        dir,
+        &Written {
+            manifest: &m,
+            all: &all,
+            reports: &reports,
+            presets: &presets,
+            image: image.as_ref(),
+            notes: &notes,
+            sigma_s: opts.sigma_s,
+        },
+    )?;
+
+    // 5. Video.
+    let video = if opts.video {
+        video::videos(dir, &m, &opts.ffmpeg)?
+    } else {
+        VideoOutcome::NotRequested
+    };
+
+    Ok(ReportSummary {
+        estimators: all.iter().map(|s| s.name.clone()).collect(),
+        frames: m.frames.len(),
+        derived_rows,
+        y_n: image.as_ref().map(|p| p.y_n),
+        files,
+        notes,
+        video,
+        reports,
+    })
+}
+
+/// The directory's manifest, checked for what the report needs (and `opts` with it).
+fn checked_manifest(dir: &Path, opts: &ReportOptions) -> Result<Manifest, Failure> {
     if !(opts.sigma_s.is_finite() && opts.sigma_s >= 0.0) {
         return Err(Failure::Input(format!(
             "--sigma-s {} must be a number of seconds >= 0",
@@ -113,17 +187,11 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
             m.fps
         )));
     }
-    let _lock = lock_dir(dir)?;
-    let adaptation = adaptation_of(&m);
-    let presets = series::presets(&m);
-    let mut notes = Vec::new();
+    Ok(m)
+}
 
-    // 1. The CSV.
-    let csv_path = dir.join(CSV);
-    let text = std::fs::read_to_string(&csv_path)
-        .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
-    let committed: BTreeSet<u32> = m.frames.keys().copied().collect();
-    let tab = table::parse(&text, &csv_path, &committed)?;
+/// Notes on rows left out and on series with undefined whites.
+fn table_notes(tab: &table::Table, base: &[Series], notes: &mut Vec<String>) {
     if tab.dropped_uncommitted > 0 {
         notes.push(format!(
             "{} row(s) of frames not committed in the manifest were left out",
@@ -136,8 +204,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
             tab.dropped_duplicates
         ));
     }
-    let base = series::base_series(&m, &tab);
-    for s in &base {
+    for s in base {
         let n = s.points.iter().filter(|p| p.white.is_some()).count();
         if n < s.points.len() {
             notes.push(format!(
@@ -148,13 +215,22 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
             ));
         }
     }
+}
 
-    // 2. Filters, and the CSV rewritten with the derived rows.
-    let mut all = base.clone();
+/// Every series, raw then filtered, and the number of derived rows; rewrites the CSV (only
+/// when it changes) with the committed rows first, as they were, then the derived rows.
+fn filter_and_rewrite(
+    csv_path: &Path,
+    text: &str,
+    tab: &table::Table,
+    base: &[Series],
+    presets: &[TemporalFilter],
+) -> Result<(Vec<Series>, usize), Failure> {
+    let mut all = base.to_vec();
     let mut derived: Vec<(u32, usize, String)> = Vec::new();
-    for f in &presets {
-        for s in &base {
-            let (fs, rows) = series::filtered(s, *f, &tab)?;
+    for f in presets {
+        for s in base {
+            let (fs, rows) = series::filtered(s, *f, tab)?;
             let order = all.len();
             derived.extend(rows.into_iter().map(|(frame, r)| (frame, order, r)));
             all.push(fs);
@@ -172,31 +248,26 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
         csv.push_str(r);
     }
     if csv != text {
-        atomic_write_bytes(&csv_path, csv.as_bytes())?;
+        atomic_write_bytes(csv_path, csv.as_bytes())?;
     }
+    Ok((all, derived.len()))
+}
 
-    // 3. Metrics.
-    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE)?;
-    let image = match image {
-        Ok(p) => Some(p),
-        Err(why) => {
-            notes.push(format!("image metrics (§7.3) not computed: {why}"));
-            None
-        }
-    };
-    let mut reports = Vec::with_capacity(all.len());
-    for (k, s) in all.iter().enumerate() {
-        reports.push(EstimatorReport {
-            name: s.name.clone(),
-            base: s.base.clone(),
-            filter: s.filter.clone(),
-            series: series::metrics_of(s, m.fps, opts.sigma_s)?,
-            image: image.as_ref().map(|p| p.metrics[k].clone()),
-            steps: series::steps(s),
-        });
-    }
+/// What the report's files are made of.
+struct Written<'a> {
+    manifest: &'a Manifest,
+    all: &'a [Series],
+    reports: &'a [EstimatorReport],
+    presets: &'a [TemporalFilter],
+    image: Option<&'a series::ImagePass>,
+    notes: &'a [String],
+    sigma_s: f64,
+}
 
-    // 4. Files.
+/// Writes coherence.csv, coherence_frames.csv, the plots and report.html; returns their
+/// paths relative to `dir`.
+fn write_files(dir: &Path, w: &Written) -> Result<Vec<String>, Failure> {
+    let (m, all, reports) = (w.manifest, w.all, w.reports);
     let mut files = Vec::new();
     let mut put = |rel: &str, bytes: &[u8]| -> Result<(), Failure> {
         atomic_write_bytes(&dir.join(rel), bytes)?;
@@ -205,43 +276,26 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     };
     put(
         "coherence.csv",
-        coherence::coherence_csv(&reports).as_bytes(),
+        coherence::coherence_csv(reports).as_bytes(),
     )?;
     put(
         "coherence_frames.csv",
-        coherence::frames_csv(&all, &reports).as_bytes(),
+        coherence::frames_csv(all, reports).as_bytes(),
     )?;
-    let filters: Vec<String> = presets.iter().map(|f| f.to_string()).collect();
-    let figures = plots::figures(&all, &reports, &filters, m.fps, image.is_some())?;
+    let filters: Vec<String> = w.presets.iter().map(|f| f.to_string()).collect();
+    let figures = plots::figures(all, reports, &filters, m.fps, w.image.is_some())?;
     for f in &figures {
         put(&format!("plots/{}.svg", f.file), f.svg.as_bytes())?;
     }
     let page = html::page(&html::Page {
-        manifest: &m,
-        reports: &reports,
+        manifest: m,
+        reports,
         plots: &figures,
-        notes: &notes,
-        y_n: image.as_ref().map(|p| p.y_n),
-        omega: image.as_ref().map(|p| (p.width, p.height, p.omega_pixels)),
-        sigma_s: opts.sigma_s,
+        notes: w.notes,
+        y_n: w.image.map(|p| p.y_n),
+        omega: w.image.map(|p| (p.width, p.height, p.omega_pixels)),
+        sigma_s: w.sigma_s,
     });
     put("report.html", page.as_bytes())?;
-
-    // 5. Video.
-    let video = if opts.video {
-        video::videos(dir, &m, &opts.ffmpeg)?
-    } else {
-        VideoOutcome::NotRequested
-    };
-
-    Ok(ReportSummary {
-        estimators: all.iter().map(|s| s.name.clone()).collect(),
-        frames: m.frames.len(),
-        derived_rows: derived.len(),
-        y_n: image.as_ref().map(|p| p.y_n),
-        files,
-        notes,
-        video,
-        reports,
-    })
+    Ok(files)
 }

@@ -18,7 +18,69 @@ pub struct MergeSummary {
     pub duplicates: usize,
 }
 
+/// A frame's entry and the input it is taken from.
+type Owners = BTreeMap<u32, (usize, FrameEntry)>;
+
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeSummary, Failure> {
+    let manifests = load_inputs(dirs, out)?;
+    let (d0, m0) = &manifests[0];
+    let (owner, duplicates) = union(&manifests)?;
+    let wanted = m0
+        .job_frames
+        .parse::<FrameSet>()
+        .map_err(|e| Failure::Input(format!("{}: manifest job_frames: {e}", d0.display())))?;
+    let missing = wanted.minus(&FrameSet::from_frames(owner.keys().copied()));
+    if !missing.is_empty() {
+        return Err(Failure::Input(format!(
+            "gap: {} frame(s) of the job's selection are in no input: {}",
+            missing.len(),
+            missing
+        )));
+    }
+    crate::still::prepare_out_dir(out)?;
+    let _lock = lock_dir(out)?;
+    crate::sequence::remove_stale_temps(out)?;
+    if let Some(existing) = Manifest::load(out)?
+        && existing.job_hash != m0.job_hash
+    {
+        return Err(Failure::Input(format!(
+            "{} already holds a different job (\"{}\"); choose an empty --out",
+            out.display(),
+            existing.job_name
+        )));
+    }
+    let mut merged = Manifest {
+        planned: m0.job_frames.clone(),
+        frames: BTreeMap::new(),
+        ..m0.clone()
+    };
+    for (f, (i, e)) in &owner {
+        let src = &manifests[*i].0;
+        for fe in &e.files {
+            let from = src.join(&fe.path);
+            let to = out.join(&fe.path);
+            if to.exists() && crate::manifest::file_entry(out, &fe.path).is_ok_and(|x| x == *fe) {
+                continue;
+            }
+            atomic_write(&to, |tmp| {
+                std::fs::hard_link(&from, tmp)
+                    .or_else(|_| std::fs::copy(&from, tmp).map(|_| ()))
+                    .map_err(|e| Failure::io("cannot copy", &from, &e))
+            })?;
+        }
+        merged.frames.insert(*f, e.clone());
+    }
+    merged.save(out)?;
+    sync_csv(out, &merged)?;
+    Ok(MergeSummary {
+        frames: owner.len(),
+        sources: manifests.len(),
+        duplicates,
+    })
+}
+
+/// Every input's manifest, checked to come from one job and one selection.
+fn load_inputs(dirs: &[PathBuf], out: &Path) -> Result<Vec<(PathBuf, Manifest)>, Failure> {
     if dirs.is_empty() {
         return Err(Failure::Input(
             "merge needs at least one input directory".into(),
@@ -66,8 +128,14 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeSummary, Failure> {
             )));
         }
     }
+    Ok(manifests)
+}
+
+/// The union of the inputs' frames, and how many were in several inputs with the same files;
+/// a frame whose files differ between inputs is a conflict.
+fn union(manifests: &[(PathBuf, Manifest)]) -> Result<(Owners, usize), Failure> {
     // Union of frames, checking overlaps.
-    let mut owner: BTreeMap<u32, (usize, FrameEntry)> = BTreeMap::new();
+    let mut owner = Owners::new();
     let mut conflicts = Vec::new();
     let mut duplicates = 0;
     for (i, (_, m)) in manifests.iter().enumerate() {
@@ -92,61 +160,5 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeSummary, Failure> {
             conflicts.join(", ")
         )));
     }
-    let wanted: Vec<u32> = m0
-        .job_frames
-        .parse::<crate::frames::FrameSet>()
-        .map_err(|e| Failure::Input(format!("{}: manifest job_frames: {e}", d0.display())))?
-        .into_vec();
-    let missing: Vec<u32> = wanted
-        .iter()
-        .copied()
-        .filter(|f| !owner.contains_key(f))
-        .collect();
-    if !missing.is_empty() {
-        return Err(Failure::Input(format!(
-            "gap: {} frame(s) of the job's selection are in no input: {}",
-            missing.len(),
-            FrameSet::from_frames(missing)
-        )));
-    }
-    crate::still::prepare_out_dir(out)?;
-    let _lock = lock_dir(out)?;
-    crate::sequence::remove_stale_temps(out)?;
-    if let Some(existing) = Manifest::load(out)?
-        && existing.job_hash != m0.job_hash
-    {
-        return Err(Failure::Input(format!(
-            "{} already holds a different job (\"{}\"); choose an empty --out",
-            out.display(),
-            existing.job_name
-        )));
-    }
-    let mut merged = Manifest {
-        planned: m0.job_frames.clone(),
-        frames: BTreeMap::new(),
-        ..m0.clone()
-    };
-    for (f, (i, e)) in &owner {
-        let src = &manifests[*i].0;
-        for fe in &e.files {
-            let from = src.join(&fe.path);
-            let to = out.join(&fe.path);
-            if to.exists() && crate::manifest::file_entry(out, &fe.path).is_ok_and(|x| x == *fe) {
-                continue;
-            }
-            atomic_write(&to, |tmp| {
-                std::fs::hard_link(&from, tmp)
-                    .or_else(|_| std::fs::copy(&from, tmp).map(|_| ()))
-                    .map_err(|e| Failure::io("cannot copy", &from, &e))
-            })?;
-        }
-        merged.frames.insert(*f, e.clone());
-    }
-    merged.save(out)?;
-    sync_csv(out, &merged)?;
-    Ok(MergeSummary {
-        frames: owner.len(),
-        sources: manifests.len(),
-        duplicates,
-    })
+    Ok((owner, duplicates))
 }

@@ -10,7 +10,7 @@
 //! is rebuilt from the committed frames' row files if it holds anything else (rows of the
 //! frame that was in flight when a run was killed). A job whose hash differs from the
 //! directory's manifest is refused unless `--force`.
-use crate::adapt::CSV_HEADER;
+use crate::adapt::{CSV_HEADER, Reading};
 use crate::error::Failure;
 use crate::frames::FrameSet;
 use crate::job::Job;
@@ -188,36 +188,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     crate::still::prepare_out_dir(&o.out)?;
     let _lock = lock_dir(&o.out)?;
     remove_stale_temps(&o.out)?;
-    let mut m = match Manifest::load(&o.out)? {
-        Some(m) if m.job_hash == job.hash => Manifest {
-            planned: planned.to_string(),
-            job_frames: all.to_string(),
-            ..m
-        },
-        Some(m) if !o.force => {
-            return Err(Failure::Input(format!(
-                "{} holds frames of job \"{}\" ({}, hash {}…) but this job hashes to {}…: refusing to mix outputs. \
-                 Use another --out, or --force to discard the old frames' records and start over",
-                o.out.display(),
-                m.job_name,
-                m.job_source,
-                // The old manifest is input: its hash may be short or not even ASCII.
-                m.job_hash.get(..12).unwrap_or(&m.job_hash),
-                crate::manifest::short_hash(&job.hash)
-            )));
-        }
-        _ => new_manifest(job, &planned, &all),
-    };
-    // Forget frames whose files are gone or damaged; they will be rendered again.
-    let damaged = FrameSet::from_frames(
-        m.frames
-            .keys()
-            .copied()
-            .filter(|f| !m.frame_intact(&o.out, *f, o.verify)),
-    );
-    for f in damaged.iter() {
-        m.frames.remove(&f);
-    }
+    let (mut m, damaged) = open_manifest(job, o, &planned, &all)?;
     m.save(&o.out)?;
     sync_csv(&o.out, &m)?;
 
@@ -252,44 +223,11 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             let t = Instant::now();
             let (entry, r) = render_frame(job, &data, f, &o.out, &progress)?;
             let (readings, frame) = (&r.readings, &r.image);
-            let rows = std::fs::read(o.out.join("rows").join(frame_name(f, "csv")))
-                .map_err(|e| Failure::io("cannot read back rows", &o.out, &e))?;
-            let csv = o.out.join(CSV);
-            let csv_len = std::fs::metadata(&csv).map(|md| md.len());
-            m.frames.insert(f, entry);
-            if let Err(e) = append(&csv, &rows).and_then(|()| m.save(&o.out)) {
-                // The frame is not committed (the manifest on disk does not list it): cut the
-                // CSV back to the committed frames' rows, so that a failed run (disk full in
-                // the append or the manifest write) leaves no torn or uncommitted row behind.
-                // Truncating needs no free space.
-                m.frames.remove(&f);
-                if let Ok(len) = csv_len {
-                    let _ = OpenOptions::new()
-                        .write(true)
-                        .open(&csv)
-                        .and_then(|file| file.set_len(len));
-                }
-                return Err(e);
-            }
+            commit(&o.out, &mut m, f, entry)?;
             summary.rendered += 1;
             summary.render_seconds += frame.stats.seconds;
             let total = t.elapsed().as_secs_f64();
-            let msg = match readings
-                .iter()
-                .find(|r| r.estimator == crate::Estimator::Eye)
-            {
-                Some(r) => {
-                    let uv = r.estimate.uv().map_or("undefined".into(), |uv| {
-                        format!("({:.4}, {:.4})", uv.x, uv.y)
-                    });
-                    let share = 100.0 * r.seconds / total.max(1e-9);
-                    format!(
-                        "eye u'v' = {uv}; eye sensor {:.3} s = {share:.1} % of the frame",
-                        r.seconds
-                    )
-                }
-                None => String::new(),
-            };
+            let msg = eye_message(readings, total);
             progress.frame_done(
                 f,
                 total,
@@ -305,6 +243,93 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     summary.complete = all.iter().all(|f| m.frames.contains_key(&f));
     summary.seconds = start.elapsed().as_secs_f64();
     Ok(summary)
+}
+
+/// The directory's manifest for this run (a new one unless it holds this job's frames) with
+/// the frames whose files are gone or damaged forgotten (they will be rendered again), and
+/// those frames.
+fn open_manifest(
+    job: &Job,
+    o: &SequenceOptions,
+    planned: &FrameSet,
+    all: &FrameSet,
+) -> Result<(Manifest, FrameSet), Failure> {
+    let mut m = match Manifest::load(&o.out)? {
+        Some(m) if m.job_hash == job.hash => Manifest {
+            planned: planned.to_string(),
+            job_frames: all.to_string(),
+            ..m
+        },
+        Some(m) if !o.force => {
+            return Err(Failure::Input(format!(
+                "{} holds frames of job \"{}\" ({}, hash {}…) but this job hashes to {}…: refusing to mix outputs. \
+                 Use another --out, or --force to discard the old frames' records and start over",
+                o.out.display(),
+                m.job_name,
+                m.job_source,
+                // The old manifest is input: its hash may be short or not even ASCII.
+                m.job_hash.get(..12).unwrap_or(&m.job_hash),
+                crate::manifest::short_hash(&job.hash)
+            )));
+        }
+        _ => new_manifest(job, planned, all),
+    };
+    // Forget frames whose files are gone or damaged; they will be rendered again.
+    let damaged = FrameSet::from_frames(
+        m.frames
+            .keys()
+            .copied()
+            .filter(|f| !m.frame_intact(&o.out, *f, o.verify)),
+    );
+    for f in damaged.iter() {
+        m.frames.remove(&f);
+    }
+    Ok((m, damaged))
+}
+
+/// Commits a rendered frame: appends its rows to adaptation.csv in one write, then saves the
+/// manifest listing it.
+fn commit(out: &Path, m: &mut Manifest, f: u32, entry: FrameEntry) -> Result<(), Failure> {
+    let rows = std::fs::read(out.join("rows").join(frame_name(f, "csv")))
+        .map_err(|e| Failure::io("cannot read back rows", out, &e))?;
+    let csv = out.join(CSV);
+    let csv_len = std::fs::metadata(&csv).map(|md| md.len());
+    m.frames.insert(f, entry);
+    if let Err(e) = append(&csv, &rows).and_then(|()| m.save(out)) {
+        // The frame is not committed (the manifest on disk does not list it): cut the
+        // CSV back to the committed frames' rows, so that a failed run (disk full in
+        // the append or the manifest write) leaves no torn or uncommitted row behind.
+        // Truncating needs no free space.
+        m.frames.remove(&f);
+        if let Ok(len) = csv_len {
+            let _ = OpenOptions::new()
+                .write(true)
+                .open(&csv)
+                .and_then(|file| file.set_len(len));
+        }
+        return Err(e);
+    }
+    Ok(())
+}
+
+/// The frame log's note on the eye sensor: its u′v′ and its share of the frame's time.
+fn eye_message(readings: &[Reading], total: f64) -> String {
+    match readings
+        .iter()
+        .find(|r| r.estimator == crate::Estimator::Eye)
+    {
+        Some(r) => {
+            let uv = r.estimate.uv().map_or("undefined".into(), |uv| {
+                format!("({:.4}, {:.4})", uv.x, uv.y)
+            });
+            let share = 100.0 * r.seconds / total.max(1e-9);
+            format!(
+                "eye u'v' = {uv}; eye sensor {:.3} s = {share:.1} % of the frame",
+                r.seconds
+            )
+        }
+        None => String::new(),
+    }
 }
 
 fn append(path: &Path, bytes: &[u8]) -> Result<(), Failure> {

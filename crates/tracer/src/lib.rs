@@ -9,6 +9,7 @@
 
 mod accel;
 mod bsdf;
+mod bvh_bench;
 mod eye;
 mod film;
 mod integrator;
@@ -22,6 +23,7 @@ mod triangle;
 
 pub use crate::accel::{Accel, Hit, InputTri, RayScratch, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
+pub use crate::bvh_bench::ObvhsBuildInput;
 pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
     sample_cardioid,

@@ -1,0 +1,142 @@
+//! A case's jobs rendered through the frame pipeline, frame by frame, with their estimates
+//! and the case's diagnostics.
+use crate::case_info::CaseInfo;
+use crate::options::PaperOptions;
+use crate::{cases, sheet};
+use eyeadapt_color::Estimate;
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
+use eyeadapt_sequencer::output::atomic_write_bytes;
+use eyeadapt_sequencer::pipeline::{FrameResult, Layout, Outputs, WriteSpec, write_images};
+use eyeadapt_tracer::{Frame, SceneData, View};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// One series of a shot: an estimator's reading, or a case's diagnostic estimate.
+pub(crate) struct Named {
+    pub name: &'static str,
+    pub estimate: Estimate,
+}
+
+/// One rendered frame of a case with its estimates.
+pub(crate) struct Shot {
+    pub frame: u32,
+    pub time: f64,
+    pub view: View,
+    /// The estimators' readings, then the case's diagnostics.
+    pub readings: Vec<Named>,
+    /// Kept for stills; `None` for long sequences (only the sheet tiles are kept).
+    pub image: Option<Frame>,
+    /// Sheet tiles raw | wcam | eye, 8-bit sRGB, and their size.
+    pub tiles: sheet::Tiles,
+    /// Per-frame diagnostics of the case (e.g. the bench's share of WCAM in case 6).
+    pub diag: BTreeMap<String, f64>,
+}
+
+/// A job rendered frame by frame.
+pub(crate) struct JobRun {
+    pub name: &'static str,
+    pub job: Job,
+    pub shots: Vec<Shot>,
+}
+
+impl JobRun {
+    pub fn scene(&self) -> &eyeadapt_scene::Scene {
+        &self.job.scene
+    }
+}
+
+/// Loads a case's job (the embedded text is written to `<work>/<job>.toml` first, so the
+/// work directory records exactly what ran) with the variant's overrides.
+fn load_case_job(
+    case: &CaseInfo,
+    index: usize,
+    o: &PaperOptions,
+    dir: &Path,
+) -> Result<Job, Failure> {
+    let (name, text) = case.jobs[index];
+    let path = dir.join(format!("{name}.toml"));
+    atomic_write_bytes(&path, text.as_bytes())?;
+    let mut ov = JobOverrides {
+        eye_samples: o.eye_samples,
+        ..Default::default()
+    };
+    ov.sampling.seed = Some(o.seed);
+    if o.quick {
+        let (w, h, spp) = case.quick[index];
+        ov.sampling.width = Some(w);
+        ov.sampling.height = Some(h);
+        ov.sampling.spp = Some(spp);
+    }
+    load_job(Some(&path), &ov)
+}
+
+/// Renders every frame of one job; writes `<dir>/<job>.csv` and, for stills, the raw EXRs.
+pub(crate) fn run_job(
+    case: &CaseInfo,
+    index: usize,
+    o: &PaperOptions,
+    dir: &Path,
+    keep_images: bool,
+) -> Result<JobRun, Failure> {
+    let name = case.jobs[index].0;
+    let job = load_case_job(case, index, o, dir)?;
+    let data = SceneData::new(&job.scene);
+    let pipeline = job.pipeline(&data);
+    let mut csv = String::from(eyeadapt_sequencer::adapt::CSV_HEADER);
+    csv.push('\n');
+    let mut shots = Vec::new();
+    for &f in job.frames.as_slice() {
+        let r = pipeline.run(f, job.time(f), job.view(f));
+        let (extra, diag) = cases::diagnostics(case, &job, &r.view, &r.image);
+        csv.push_str(&r.rows());
+        for d in &extra {
+            csv.push_str(&r.row(d.name, &d.estimate));
+        }
+        let readings: Vec<Named> = r
+            .readings
+            .iter()
+            .map(|x| Named {
+                name: x.estimator.name(),
+                estimate: x.estimate.clone(),
+            })
+            .chain(extra)
+            .collect();
+        let tiles = sheet::tiles(&r.image, &readings, &job.adaptation);
+        let n = job.frames.len();
+        if o.verbose && (n <= 10 || f % 10 == 0 || f as usize + 1 == n) {
+            eprintln!(
+                "paper case {} {name}: frame {f} of {n} ({}x{}, {} spp) done",
+                case.number, job.width, job.height, job.spp
+            );
+        }
+        if keep_images {
+            let spec = WriteSpec {
+                layout: Layout::Prefixed(name),
+                outputs: Outputs {
+                    raw_exr: true,
+                    raw_png: false,
+                    adapted_png: false,
+                    adapted_exr: false,
+                },
+                exposure: job.exposure,
+                adaptation: &job.adaptation,
+            };
+            write_images(dir, &r, &spec, |_| {})?;
+        }
+        let FrameResult {
+            time, view, image, ..
+        } = r;
+        shots.push(Shot {
+            frame: f,
+            time,
+            view,
+            readings,
+            image: keep_images.then_some(image),
+            tiles,
+            diag,
+        });
+    }
+    atomic_write_bytes(&dir.join(format!("{name}.csv")), csv.as_bytes())?;
+    Ok(JobRun { name, job, shots })
+}
