@@ -4,7 +4,10 @@
 #   1. cargo test, every crate, optimised (rendering tests use tiny images);
 #   2. the per-frame CSV loads in pandas with the documented columns and types
 #      (a throw-away venv under target/, pandas from PyPI);
-#   3. the Slurm end-to-end test on a real single-node Slurm (Debian packages,
+#   3. the coherence report in headless Chromium (Debian's package, installed by
+#      scripts/install-chromium.sh; required as root, skipped without chromium otherwise
+#      unless EYEADAPT_REQUIRE_CHROMIUM=1); screenshots go to target/browser/;
+#   4. the Slurm end-to-end test on a real single-node Slurm (Debian packages,
 #      installed by scripts/slurm/local-cluster.sh; needs root, skipped otherwise
 #      unless EYEADAPT_REQUIRE_SLURM=1).
 # Prints 'N passed, M failed' for the stages and exits non-zero if any failed.
@@ -54,6 +57,19 @@ pandas_csv() {
   rm -rf "$out"
 }
 
+# As root (CI) chromium is installed and the test required; elsewhere it runs when chromium is
+# on PATH and says it skipped otherwise.
+report_in_browser() {
+  if ! bash scripts/install-chromium.sh >/dev/null; then
+    if [[ $(id -u) -eq 0 || ${EYEADAPT_REQUIRE_CHROMIUM:-0} == 1 ]]; then
+      return 1
+    fi
+    echo "skipped: no chromium on PATH (set EYEADAPT_REQUIRE_CHROMIUM=1 to fail instead)"
+    return 0
+  fi
+  EYEADAPT=$PWD/target/release/eyeadapt bash tests/browser/report.sh
+}
+
 slurm_e2e() {
   if [[ $(id -u) -ne 0 && ${EYEADAPT_REQUIRE_SLURM:-0} != 1 ]]; then
     echo "skipped: the Slurm end-to-end test needs root (set EYEADAPT_REQUIRE_SLURM=1 to fail instead)"
@@ -64,6 +80,7 @@ slurm_e2e() {
 
 stage "cargo tests" cargo_tests
 stage "adaptation.csv in pandas" pandas_csv
+stage "report in headless Chromium" report_in_browser
 stage "Slurm end-to-end" slurm_e2e
 echo "test.sh: $passed passed, $failed failed"
 ((failed == 0))

@@ -289,3 +289,35 @@ fn bad_job_files_exit_2_with_location() {
         assert!(!Path::new(&dir.join("out/manifest.json")).exists());
     }
 }
+
+#[test]
+fn a_scene_file_given_as_job_says_so() {
+    let (_d, dir) = job_dir();
+    let toml_scene = dir.join("scene.toml");
+    std::fs::write(&toml_scene, GOOD).unwrap();
+    let xml_scene = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/cornell-box/cornell.xml"
+    ));
+    for scene in [&toml_scene, &xml_scene] {
+        let o = eyeadapt()
+            .args([
+                "sequence",
+                scene.to_str().unwrap(),
+                "--out",
+                dir.join("out").to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(&format!(
+                "{} is a scene file, not a job file; use `eyeadapt render",
+                scene.display()
+            )) && err.contains("scene = "),
+            "{err}"
+        );
+        assert!(!dir.join("out").exists(), "nothing may be written: {err}");
+    }
+}

@@ -155,3 +155,67 @@ fn texture_and_instance_example_loads_and_renders() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `eyeadapt plan JOB`'s `KEY=VALUE` lines.
+fn plan(job: &std::path::Path) -> std::collections::HashMap<String, String> {
+    let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .args(["plan", job.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .filter_map(|l| l.split_once('='))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
+#[test]
+fn job_format_doc_lists_the_real_defaults_and_its_example_renders() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/job-format.md"))
+        .unwrap();
+    let blocks = fenced_toml(&doc);
+    assert_eq!(blocks.len(), 2, "a complete example and a typical job");
+    let dir = tempfile::tempdir().unwrap();
+    // The complete example spells out every default: it must be the same job as one that
+    // names only its scene.
+    let complete = dir.path().join("complete.toml");
+    std::fs::write(&complete, &blocks[0]).unwrap();
+    let minimal = dir.path().join("minimal.toml");
+    std::fs::write(&minimal, "scene = \"builtin:three-rooms\"\n").unwrap();
+    let (full, bare) = (plan(&complete), plan(&minimal));
+    assert_eq!(full["EYEADAPT_JOB_NAME"], "walkthrough");
+    assert_eq!(full["EYEADAPT_JOB_HASH"], bare["EYEADAPT_JOB_HASH"]);
+    assert_eq!(full["EYEADAPT_FRAMES"], bare["EYEADAPT_FRAMES"]);
+
+    // The typical job: 48 of its 49 frames; two of them rendered, tiny.
+    let typical = dir.path().join("typical.toml");
+    std::fs::write(&typical, &blocks[1]).unwrap();
+    assert_eq!(plan(&typical)["EYEADAPT_FRAMES"], "48");
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .args(["sequence", typical.to_str().unwrap(), "--frames", "0-1"])
+        .args([
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--spp",
+            "1",
+            "--eye-samples",
+            "64",
+        ])
+        .args([
+            "--no-report",
+            "--no-progress-bar",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("adaptation.csv")).unwrap();
+    // Header plus one row per frame and estimator.
+    assert_eq!(csv.lines().count(), 1 + 2 * 3, "{csv}");
+    assert!(out.join("frames/wcam/frame_000001.png").exists());
+}

@@ -15,11 +15,15 @@
 //!
 //! The directory is locked like a sequence run, so a report never races a render writing
 //! the same CSV. Running the report twice gives the same files.
+mod about;
 mod coherence;
 mod html;
 pub mod locus;
+mod metrics_table;
+pub mod palette;
 mod plots;
 mod series;
+mod summary;
 mod table;
 mod video;
 
@@ -278,50 +282,15 @@ fn write_files(dir: &Path, w: &Written) -> Result<Vec<String>, Failure> {
         "coherence_frames.csv",
         coherence::frames_csv(all, reports).as_bytes(),
     )?;
-    let mut groups: Vec<(String, String, Option<String>)> =
-        vec![(String::new(), "per-frame estimates".into(), None)];
-    for f in w.presets {
-        groups.push((
-            format!("_{f}"),
-            format!("with the {f} temporal filter"),
-            Some(f.to_string()),
-        ));
-    }
-    let mut svgs: Vec<(String, String)> = Vec::new();
-    for (suffix, what, filter) in &groups {
-        let idx: Vec<usize> = (0..all.len())
-            .filter(|&k| all[k].filter == *filter)
-            .collect();
-        let group: Vec<&Series> = idx.iter().map(|&k| &all[k]).collect();
-        let reps: Vec<&EstimatorReport> = idx.iter().map(|&k| &reports[k]).collect();
-        let mut plot = |name: &str, title: String, svg: String| -> Result<(), Failure> {
-            put(&format!("plots/{name}{suffix}.svg"), svg.as_bytes())?;
-            svgs.push((title, svg));
-            Ok(())
-        };
-        let t = format!("Adaptation colour per frame, {what} (Fig. 14 analogue)");
-        plot(
-            "adaptation",
-            t.clone(),
-            plots::adaptation_plot(&group, &t, m.fps)?,
-        )?;
-        let t = format!("u′v′ trajectories, {what} (Fig. 11 analogue)");
-        plot(
-            "chromaticity",
-            t.clone(),
-            plots::chromaticity_plot(&group, &t)?,
-        )?;
-        let t = format!("Frame-to-frame Δu′v′, {what}");
-        plot("steps", t.clone(), plots::steps_plot(&group, &reps, &t)?)?;
-        if w.image.is_some() {
-            let t = format!("dE_cat per frame, {what}");
-            plot("de_cat", t.clone(), plots::de_cat_plot(&group, &reps, &t)?)?;
-        }
+    let filters: Vec<String> = w.presets.iter().map(|f| f.to_string()).collect();
+    let figures = plots::figures(all, reports, &filters, m.fps, w.image.is_some())?;
+    for f in &figures {
+        put(&format!("plots/{}.svg", f.file), f.svg.as_bytes())?;
     }
     let page = html::page(&html::Page {
         manifest: m,
         reports,
-        plots: &svgs,
+        plots: &figures,
         notes: w.notes,
         y_n: w.image.map(|p| p.y_n),
         omega: w.image.map(|p| (p.width, p.height, p.omega_pixels)),

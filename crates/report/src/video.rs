@@ -4,6 +4,8 @@
 //! ffmpeg's `drawtext` needs a font file at run time; instead the labels are drawn here with a
 //! built-in 5×7 bitmap font into a PNG strip that ffmpeg stacks above the three panels, so
 //! the movie looks the same on every machine.
+use crate::palette::PALETTE;
+use eyeadapt_color::srgb_decode;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::manifest::Manifest;
 use eyeadapt_sequencer::output::{temp_path, write_png};
@@ -73,8 +75,9 @@ fn glyph(c: char) -> [u8; 7] {
     }
 }
 
-/// A `width × height` linear-RGB strip: white text centred on black, in panels of
-/// `panel_w` pixels, one label each.
+/// A `width × height` linear-RGB strip: each label centred in its panel of `panel_w` pixels,
+/// in its estimator's colour (the report's palette; anything else, e.g. `raw`, dark grey) on
+/// white, so a movie names its panels in the colours of the plots.
 pub fn label_strip(labels: &[&str], panel_w: usize) -> (Vec<[f32; 3]>, usize, usize) {
     let longest = labels
         .iter()
@@ -86,8 +89,9 @@ pub fn label_strip(labels: &[&str], panel_w: usize) -> (Vec<[f32; 3]>, usize, us
     let scale = ((panel_w.saturating_sub(4)) / (6 * longest)).clamp(1, 4);
     let height = 8 * scale + 2 * scale.max(2);
     let width = panel_w * labels.len();
-    let mut px = vec![[0.0f32; 3]; width * height];
+    let mut px = vec![[1.0f32; 3]; width * height];
     for (k, label) in labels.iter().enumerate() {
+        let ink = label_colour(label);
         let text_w = label.chars().count() * 6 * scale;
         let x0 = k * panel_w + panel_w.saturating_sub(text_w) / 2;
         let y0 = (height - 7 * scale) / 2;
@@ -102,7 +106,7 @@ pub fn label_strip(labels: &[&str], panel_w: usize) -> (Vec<[f32; 3]>, usize, us
                             let x = x0 + (i * 6 + col) * scale + dx;
                             let y = y0 + row * scale + dy;
                             if x < (k + 1) * panel_w && y < height {
-                                px[y * width + x] = [1.0; 3];
+                                px[y * width + x] = ink;
                             }
                         }
                     }
@@ -111,6 +115,14 @@ pub fn label_strip(labels: &[&str], panel_w: usize) -> (Vec<[f32; 3]>, usize, us
         }
     }
     (px, width, height)
+}
+
+/// A label's colour in linear RGB: its estimator's, or dark grey for any other label.
+fn label_colour(label: &str) -> [f32; 3] {
+    match PALETTE.iter().find(|(n, _)| *n == label) {
+        Some((_, c)) => [c.0, c.1, c.2].map(|v| srgb_decode(f64::from(v) / 255.0) as f32),
+        None => [0.03; 3],
+    }
 }
 
 /// Whether `ffmpeg` runs.
@@ -297,13 +309,22 @@ mod tests {
     use super::*;
 
     #[test]
-    fn label_strip_draws_centred_white_text() {
-        let (px, w, h) = label_strip(&["raw", "eye"], 96);
-        assert_eq!(w, 192);
-        let lit =
-            |x0: usize, x1: usize| (0..h).any(|y| (x0..x1).any(|x| px[y * w + x] == [1.0; 3]));
-        assert!(lit(20, 76) && lit(116, 172), "both labels drawn");
-        assert!(!lit(0, 10) && !lit(96, 106), "margins stay black");
+    fn label_strip_draws_centred_text_in_the_estimators_colours() {
+        let (px, w, h) = label_strip(&["raw", "eye", "wcam"], 96);
+        assert_eq!(w, 288);
+        let inked = |x0: usize, x1: usize, ink: [f32; 3]| {
+            (0..h).any(|y| (x0..x1).any(|x| px[y * w + x] == ink))
+        };
+        assert!(inked(20, 76, [0.03; 3]), "raw in dark grey");
+        assert!(inked(116, 172, [0.0; 3]), "eye in black, as in the plots");
+        let wcam = label_colour("wcam");
+        assert!(
+            wcam[0] > wcam[1] && inked(212, 268, wcam),
+            "wcam in its red"
+        );
+        let blank =
+            |x0: usize, x1: usize| (0..h).all(|y| (x0..x1).all(|x| px[y * w + x] == [1.0; 3]));
+        assert!(blank(0, 10) && blank(96, 106), "margins stay white");
         // Every glyph used by the estimator names exists.
         for c in "abcdefghijklmnopqrstuvwxyz0123456789_+-:. ".chars() {
             assert!(c == ' ' || glyph(c) != [0; 7], "{c}");

@@ -362,23 +362,63 @@ fn report_files_name_every_estimator_and_rerunning_changes_nothing() {
         assert!(html.contains(&format!(">{e}<")), "report.html lacks {e}");
     }
     assert!(html.contains("eyeadapt ") && html.contains("temporal_filters"));
-    assert_eq!(html.matches("<svg").count(), 8, "4 plots × 2 groups inline");
-    for plot in ["adaptation", "chromaticity", "steps", "de_cat"] {
-        let raw = String::from_utf8(read(&format!("plots/{plot}.svg"))).unwrap();
-        let filtered = String::from_utf8(read(&format!("plots/{plot}_fairchild.svg"))).unwrap();
-        let (raw, filtered) = (svg_texts(&raw), svg_texts(&filtered));
+    // Per-frame estimates: 5 plots; the filter: key figure, steps, dE_cat.
+    assert_eq!(html.matches("<svg").count(), 8, "5 + 3 plots inline");
+    // The answer first, then the key figure, then what each estimator measures; the
+    // sortable table further down.
+    let at = |needle: &str| html.find(needle).unwrap_or_else(|| panic!("no {needle}"));
+    assert!(at("The answer") < at("<svg"));
+    assert!(at("<svg") < at("What each estimator measures"));
+    assert!(at("What each estimator measures") < at("<table class=\"sortable\">"));
+    assert!(html.contains("eye's largest step is") && html.contains("wcam's"));
+    assert!(
+        html.contains("the mean colour of the frame"),
+        "grey_world's sentence"
+    );
+    let plots = [
+        ("adaptation", true),
+        ("colour_strips", false),
+        ("chromaticity", false),
+        ("steps", true),
+        ("de_cat", true),
+    ];
+    for (plot, filtered_too) in plots {
+        let raw = svg_texts(&String::from_utf8(read(&format!("plots/{plot}.svg"))).unwrap());
+        let filtered = filtered_too.then(|| {
+            svg_texts(&String::from_utf8(read(&format!("plots/{plot}_fairchild.svg"))).unwrap())
+        });
+        assert_eq!(
+            dir.path()
+                .join(format!("plots/{plot}_fairchild.svg"))
+                .exists(),
+            filtered_too
+        );
         for e in ["eye", "wcam", "grey_world"] {
-            assert!(
-                raw.contains(&e.to_string()),
-                "{plot}.svg lacks {e}: {raw:?}"
-            );
-            let f = format!("{e}+fairchild");
-            assert!(filtered.contains(&f), "{plot}_fairchild.svg lacks {f}");
+            // eye is named in the small multiples' key line rather than in a panel of its own.
+            let names = |texts: &[String], name: &str| {
+                texts
+                    .iter()
+                    .any(|t| t == name || (t.starts_with("black: ") && t.contains(name)))
+            };
+            assert!(names(&raw, e), "{plot}.svg lacks {e}: {raw:?}");
+            if let Some(filtered) = &filtered {
+                let f = format!("{e}+fairchild");
+                let f = if e == "eye" && plot != "adaptation" {
+                    "eye".to_string()
+                } else {
+                    f
+                };
+                assert!(
+                    names(filtered, &f),
+                    "{plot}_fairchild.svg lacks {f}: {filtered:?}"
+                );
+            }
         }
         // Axis descriptions with units.
         assert!(
-            raw.iter()
-                .any(|t| t == "time (s)" || t == "u′ (CIE 1976 UCS, unitless)"),
+            raw.iter().any(|t| t == "time (s)"
+                || t == "u′ (CIE 1976 UCS, unitless)"
+                || t.starts_with("frame (")),
             "{plot}: {raw:?}"
         );
     }

@@ -1,4 +1,4 @@
-//! Job files: what a sequence renders, and how (format: `docs/job-format.md`).
+//! Job files: what a sequence renders, and how. Every key with its default: `docs/job-format.md`.
 //!
 //! ```toml
 //! name = "demo"
@@ -182,6 +182,17 @@ pub fn load_job(path: Option<&Path>, o: &JobOverrides) -> Result<Job, Failure> {
     parse_job(&text, &source, &dir, o)
 }
 
+/// A scene file (TOML scene or Mitsuba XML) given where a job file belongs, told apart from a
+/// broken job file: XML, or TOML without a `scene` key but with a scene's top-level tables.
+fn looks_like_scene_file(text: &str) -> bool {
+    if text.trim_start().starts_with('<') {
+        return true;
+    }
+    const SCENE_KEYS: [&str; 5] = ["camera", "materials", "shapes", "lights", "environment"];
+    text.parse::<toml::Table>()
+        .is_ok_and(|t| !t.contains_key("scene") && SCENE_KEYS.iter().any(|k| t.contains_key(*k)))
+}
+
 /// Problems found while checking a job file, each located `file:line:col`.
 struct Problems<'a> {
     map: SourceMap<'a>,
@@ -210,6 +221,12 @@ impl Problems<'_> {
 }
 
 fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<Job, Failure> {
+    if looks_like_scene_file(text) {
+        return Err(Failure::Input(format!(
+            "{source} is a scene file, not a job file; use `eyeadapt render {source}` or name it \
+             as `scene = \"…\"` in a job (docs/job-format.md)"
+        )));
+    }
     let file = PathBuf::from(source);
     let map = SourceMap { file: &file, text };
     let raw: JobFile = toml::from_str(text).map_err(|e| {
