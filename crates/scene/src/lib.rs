@@ -18,6 +18,7 @@ mod any;
 mod builtin;
 mod camera;
 mod camera_path;
+mod camera_track;
 mod diagnostic;
 mod format;
 pub mod gltf;
@@ -31,12 +32,14 @@ mod obj;
 mod scene;
 mod shapes;
 mod texture;
+mod track;
 mod transform;
 
 pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
+pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::instance::Instance;
 pub use crate::light::Light;
@@ -48,6 +51,7 @@ pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::scene::{RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
+pub use crate::track::{Interpolation, Track, TrackValue};
 pub use crate::transform::Transform;
 
 /// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).

@@ -33,11 +33,15 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
         Some(sc) => sc.nodes().collect(),
         None => file.document.nodes().collect(),
     };
-    // Depth-first over the hierarchy with the parent's world transform (the reader of the node
-    // tree has refused cycles already, and a node has one parent, so each is visited once).
+    // Depth-first over the hierarchy with the parent's world transform. The node-tree reader
+    // has refused cycles and second parents; `visited` keeps the walk finite regardless.
     let mut stack: Vec<(gltf::Node, DMat4)> =
         roots.into_iter().map(|n| (n, DMat4::IDENTITY)).collect();
+    let mut visited = vec![false; file.document.nodes().len()];
     while let Some((node, parent)) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            continue;
+        }
         let world = parent
             * DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
         for c in node.children() {
