@@ -10,6 +10,7 @@
 //! | `frames/` | `NAME.spec` | `eyeadapt sequence --frames SPEC` into the same directory |
 //! | `merge/` | `NAME/` (a chunk output) | `eyeadapt merge GOOD_CHUNK CASE` into a good merge |
 //! | `xml/` | `NAME.xml` | `eyeadapt render CASE` (Mitsuba 3 XML) into the good render |
+//! | `gltf/` | `NAME.gltf` | `eyeadapt render CASE` (glTF 2.0) into the good render |
 //! | `report/` | `NAME.csv` / `NAME.manifest` | `eyeadapt report` of a good sequence with that CSV / manifest patch |
 //! | `fuzz-regressions/` | inputs the fuzzers once crashed on | see `fuzz_regressions` below |
 mod common;
@@ -270,6 +271,7 @@ fn every_malformed_input_exits_2_with_its_location_and_leaves_outputs_alone() {
     for (case, path, x) in cases("scene", "toml")
         .into_iter()
         .chain(cases("xml", "xml"))
+        .chain(cases("gltf", "gltf"))
     {
         let (code, err) = run(eyeadapt()
             .arg("render")

@@ -1,12 +1,15 @@
-//! One entry point for every scene format: Mitsuba 3 XML by extension, TOML otherwise.
-use crate::{Scene, SceneError, load_mitsuba, load_scene};
+//! One entry point for every scene format: Mitsuba 3 XML and glTF 2.0 by extension, TOML
+//! otherwise.
+use crate::{Scene, SceneError, gltf, load_mitsuba, load_scene};
 use std::path::Path;
 
-/// Loads `path` as Mitsuba 3 XML when its extension is `.xml` (any case), otherwise as an
-/// eyeadapt TOML scene.
+/// Loads `path` as Mitsuba 3 XML when its extension is `.xml`, as glTF 2.0 when it is
+/// `.gltf` or `.glb` (any case), otherwise as an eyeadapt TOML scene.
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
     if is_mitsuba_path(path) {
         load_mitsuba(path, &[])
+    } else if gltf::is_gltf_path(path) {
+        gltf::load_gltf(path)
     } else {
         load_scene(path)
     }

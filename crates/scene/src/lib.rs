@@ -18,6 +18,7 @@ mod any;
 mod builtin;
 mod camera;
 mod camera_path;
+mod camera_track;
 mod diagnostic;
 pub mod gltf;
 mod image_file;
@@ -32,12 +33,14 @@ mod scene;
 mod shapes;
 mod texture;
 mod toml_scene;
+mod track;
 mod transform;
 
 pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
+pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::image_file::{ImageCache, load_image, srgb_to_linear};
 pub use crate::instance::Instance;
@@ -51,6 +54,7 @@ pub use crate::scene::{RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
 pub use crate::toml_scene::{load_scene, load_scene_str};
+pub use crate::track::{Interpolation, Track, TrackValue};
 pub use crate::transform::Transform;
 
 /// Linear sRGB triple (radiance, reflectance or intensity, depending on the field).

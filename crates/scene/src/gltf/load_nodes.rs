@@ -6,8 +6,8 @@
 //! them is ambiguous and an error that asks for a name.
 use super::nodes::{Node, NodeTracks, NodeTree, Rest};
 use super::read::{GltfFile, at};
-use super::track::{Interpolation, Track, TrackValue};
 use crate::Diagnostic;
+use crate::track::{Interpolation, Track, TrackValue};
 use glam::{DMat4, DQuat, DVec3};
 use gltf::animation::util::ReadOutputs;
 

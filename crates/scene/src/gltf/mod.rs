@@ -1,29 +1,49 @@
 //! glTF 2.0 (`.gltf` + `.bin` or data URIs, `.glb`), read with the `gltf` crate.
 //!
 //! - [`read`]: the document and its buffers, errors as JSON pointers;
-//! - [`track`]: keyframe interpolation (STEP, LINEAR, CUBICSPLINE) as the spec defines it;
 //! - [`nodes`]: the node hierarchy and world transforms at any time;
 //! - [`load_nodes`]: the hierarchy and the chosen animation's channels from the file;
-//! - [`camera`]: the camera a walkthrough is rendered from, as a pose per time.
+//! - [`camera`]: the camera a walkthrough is rendered from, as a pose per time;
+//! - [`geometry`], [`materials`], [`lights`]: meshes, metallic-roughness materials and
+//!   `KHR_lights_punctual` lights in eyeadapt's terms; [`assemble`]: the whole [`Scene`].
+mod assemble;
 mod camera;
+mod geometry;
+mod lights;
 mod load_nodes;
+mod materials;
 mod nodes;
 mod read;
-mod track;
 
 pub use camera::AnimatedCamera;
+pub use lights::LUMENS_PER_WATT;
 pub use load_nodes::MAX_ANIMATION_SECONDS;
 pub use nodes::{Node, NodeTracks, NodeTree, Rest};
 pub use read::{GltfFile, json_pointer, open};
-pub use track::{Interpolation, Track};
 
-use crate::SceneError;
+use crate::{Scene, SceneError};
 use std::path::Path;
 
 /// True for the extensions this reader takes (`.gltf`, `.glb`, any case).
 pub fn is_gltf_path(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+}
+
+/// The scene of a glTF file seen from its first animated camera (or first camera) at time 0:
+/// what `eyeadapt render` shows. Sequences follow the camera with [`load_camera`].
+pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
+    let file = open(path)?;
+    // The hierarchy and every animation are checked whether or not a camera uses them: a
+    // cycle or a broken track is an error in the file, not only in a walkthrough of it.
+    load_nodes::node_tree(&file, None).map_err(|diagnostics| SceneError { diagnostics })?;
+    let has_camera = file.document.nodes().any(|n| n.camera().is_some());
+    let camera = if has_camera {
+        Some(camera_of(&file, None, None)?)
+    } else {
+        None
+    };
+    assemble::scene(&file, camera.as_ref())
 }
 
 /// The camera of a glTF file and the animation that moves it.

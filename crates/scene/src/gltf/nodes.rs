@@ -5,7 +5,7 @@
 //! and keeps its matrix. World transforms compose parents first: `world(n) = world(parent) ·
 //! local(n)`. Everything is in double precision so that a camera deep in a hierarchy keeps
 //! its pose to far better than the 1e-4 the Blender comparison asks for.
-use super::track::Track;
+use crate::track::Track;
 use glam::{DMat4, DQuat, DVec3};
 
 /// A node's transform when no animation drives it.
@@ -116,8 +116,8 @@ impl NodeTree {
 
 #[cfg(test)]
 mod tests {
-    use super::super::track::Interpolation;
     use super::*;
+    use crate::track::Interpolation;
 
     fn trs(translation: DVec3, rotation: DQuat) -> Rest {
         Rest::Trs {

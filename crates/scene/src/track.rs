@@ -1,5 +1,6 @@
-//! One animation channel's keyframes and their interpolation, as glTF 2.0 defines them
-//! (§3.11 "Animations" and Appendix C "Interpolation"):
+//! Keyframe tracks: one animated property's keyframes and their interpolation, as glTF 2.0
+//! defines them (§3.11 "Animations", Appendix C "Interpolation"); glTF animations and CSV
+//! camera tracks both use them.
 //!
 //! - before the first keyframe the first value holds, after the last the last value holds;
 //! - `STEP`: the value of the keyframe at or before `t`;

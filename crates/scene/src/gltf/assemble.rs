@@ -1,0 +1,141 @@
+//! The whole glTF file as a [`Scene`]: every node of the default scene placed at time 0.
+//!
+//! Meshes become object-space meshes (one per primitive, read once however many nodes use
+//! them) and each node that uses one an instance with its world transform; materials are read
+//! once each; `KHR_lights_punctual` lights are placed by their nodes; the chosen camera at
+//! time 0 is the scene camera.
+use super::camera::AnimatedCamera;
+use super::read::{GltfFile, at, fail};
+use super::{geometry, lights, materials};
+use crate::{Camera, Diagnostic, MaterialId, MeshId, Scene, SceneError, Severity, Transform};
+use glam::DMat4;
+use std::collections::HashMap;
+
+/// Horizontal resolution of the scene camera a glTF file implies (a job or `--width` sets
+/// its own); the height follows the camera's aspect ratio, 16:9 when the file gives none.
+const DEFAULT_WIDTH: u32 = 640;
+
+/// The scene of `file`, seen from `camera` at time 0.
+pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, SceneError> {
+    let mut s = Scene {
+        source: file.path.clone(),
+        ..Scene::default()
+    };
+    let mut errors: Vec<Diagnostic> = Vec::new();
+    let mut warnings: Vec<Diagnostic> = Vec::new();
+    let mut meshes: HashMap<(usize, usize), Option<MeshId>> = HashMap::new();
+    let mut mats: HashMap<Option<usize>, MaterialId> = HashMap::new();
+    let roots: Vec<gltf::Node> = match file
+        .document
+        .default_scene()
+        .or(file.document.scenes().next())
+    {
+        Some(sc) => sc.nodes().collect(),
+        None => file.document.nodes().collect(),
+    };
+    // Depth-first over the hierarchy with the parent's world transform. The node-tree reader
+    // has refused cycles and second parents; `visited` keeps the walk finite regardless.
+    let mut stack: Vec<(gltf::Node, DMat4)> =
+        roots.into_iter().map(|n| (n, DMat4::IDENTITY)).collect();
+    let mut visited = vec![false; file.document.nodes().len()];
+    while let Some((node, parent)) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            continue;
+        }
+        let world = parent
+            * DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+        for c in node.children() {
+            stack.push((c, world));
+        }
+        if let Some(light) = node.light()
+            && let Some(l) = lights::light(&file.path, &light, world, &mut warnings)
+        {
+            s.lights.push(l);
+        }
+        let Some(mesh) = node.mesh() else { continue };
+        for prim in mesh.primitives() {
+            let key = (mesh.index(), prim.index());
+            let id = match meshes.get(&key) {
+                Some(id) => *id,
+                None => {
+                    let id = match geometry::primitive_mesh(file, &mesh, &prim, &mut warnings) {
+                        Ok(Some(m)) => Some(s.add_mesh(m)),
+                        Ok(None) => None,
+                        Err(e) => {
+                            errors.push(e);
+                            None
+                        }
+                    };
+                    meshes.insert(key, id);
+                    id
+                }
+            };
+            let Some(id) = id else { continue };
+            let gm = prim.material();
+            let mat = *mats.entry(gm.index()).or_insert_with(|| {
+                let m = materials::material(&file.path, &gm, &mut warnings);
+                s.materials.push(m);
+                MaterialId(s.materials.len() as u32 - 1)
+            });
+            s.add_instance(
+                id,
+                Some(mat),
+                Transform {
+                    matrix: world.as_mat4(),
+                },
+            );
+        }
+    }
+    if let Some(cam) = camera {
+        s.camera = Some(scene_camera(file, cam)?);
+    }
+    if s.instances.is_empty() && s.lights.is_empty() {
+        errors.push(at(
+            &file.path,
+            "/scenes",
+            "the scene has no meshes and no lights",
+        ));
+    }
+    if !errors.is_empty() {
+        return Err(SceneError {
+            diagnostics: errors,
+        });
+    }
+    warnings
+        .iter_mut()
+        .for_each(|w| w.severity = Severity::Warning);
+    s.warnings = warnings;
+    Ok(s)
+}
+
+fn scene_camera(file: &GltfFile, cam: &AnimatedCamera) -> Result<Camera, SceneError> {
+    // Frame 0 is at time 0 on the file's clock, whatever the first keyframe's time.
+    let pose = cam.pose(0.0);
+    let aspect = file
+        .document
+        .nodes()
+        .nth(cam.node)
+        .and_then(|n| n.camera())
+        .and_then(|c| match c.projection() {
+            gltf::camera::Projection::Perspective(p) => p.aspect_ratio(),
+            gltf::camera::Projection::Orthographic(_) => None,
+        })
+        .filter(|a| a.is_finite() && *a > 0.0)
+        .unwrap_or(16.0 / 9.0);
+    let height = ((DEFAULT_WIDTH as f32 / aspect).round() as u32).clamp(1, 16384);
+    if !pose.position.is_finite() || !pose.forward.is_finite() {
+        return Err(fail(at(
+            &file.path,
+            &format!("/nodes/{}", cam.node),
+            "the camera's transform at time 0 is degenerate",
+        )));
+    }
+    Ok(Camera {
+        position: pose.position.as_vec3(),
+        look_at: (pose.position + pose.forward).as_vec3(),
+        up: pose.up.as_vec3(),
+        fov_deg: cam.fov_deg as f32,
+        width: DEFAULT_WIDTH,
+        height,
+    })
+}
