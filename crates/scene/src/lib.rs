@@ -17,6 +17,7 @@
 mod any;
 mod builtin;
 mod camera;
+mod camera_motion;
 mod camera_path;
 mod camera_track;
 mod diagnostic;
@@ -39,6 +40,7 @@ mod transform;
 pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
+pub use crate::camera_motion::{CameraMotion, DEFAULT_FPS, MAX_FRAMES};
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};

@@ -34,11 +34,12 @@
 //!
 //! Unknown keys are errors. Every problem is reported as `file:line:col: message`.
 use crate::adapt::{AdaptationConfig, AdaptationSettings, EstimatorConfig};
+use crate::camera_motion::{CameraPathTable, camera_motion};
 use crate::error::Failure;
 use crate::estimator::Estimator;
 use crate::frames::FrameSet;
 use crate::pipeline::{Outputs, Pipeline, Sampling};
-use eyeadapt_scene::{CameraPath, Scene, SourceMap};
+use eyeadapt_scene::{CameraMotion, Scene, SourceMap};
 use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View};
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
@@ -56,7 +57,7 @@ struct JobFile {
     seed: Option<Spanned<i64>>,
     frames: Option<Spanned<String>>,
     render: Option<RenderTable>,
-    camera_path: Option<Spanned<CameraPath>>,
+    camera_path: Option<Spanned<CameraPathTable>>,
     estimators: Option<Spanned<EstimatorConfig>>,
     adaptation: Option<Spanned<AdaptationConfig>>,
     temporal: Option<Spanned<TemporalTable>>,
@@ -96,7 +97,8 @@ pub struct Job {
     /// The job file, or `builtin:demo`.
     pub source: String,
     pub scene: Scene,
-    pub path: CameraPath,
+    /// The camera's motion: keyframes, a glTF animation or a CSV track.
+    pub path: CameraMotion,
     pub width: u32,
     pub height: u32,
     pub spp: u32,
@@ -247,7 +249,18 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     let (estimators, estimator_config) = estimators(raw.estimators.as_ref(), o, &mut p);
     let adaptation = adaptation(raw.adaptation.as_ref(), &mut p);
     let temporal = temporal(raw.temporal.as_ref(), &mut p);
-    let path = camera_path(raw.camera_path.as_ref(), scene.as_ref(), &mut p);
+    let path = scene.as_ref().and_then(|s| {
+        let scene_path = scene_location(raw.scene.get_ref(), dir);
+        match camera_motion(raw.camera_path.as_ref(), s, Path::new(&scene_path), dir) {
+            Ok(m) => Some(m),
+            Err(problems) => {
+                for (offset, msg) in problems {
+                    p.at(offset, msg);
+                }
+                None
+            }
+        }
+    });
     let (Some(scene), Some(path)) = (scene, path) else {
         return Err(Failure::Input(p.errors.join("\n")));
     };
@@ -293,14 +306,19 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     Ok(job)
 }
 
+/// Where the job's `scene` is: `builtin:NAME` as it is, a file relative to the job file.
+fn scene_location(given: &str, dir: &Path) -> String {
+    if given.starts_with("builtin:") {
+        given.to_string()
+    } else {
+        dir.join(given).display().to_string()
+    }
+}
+
 /// The scene (its path relative to the job file), if it loads.
 fn load_scene(spec: &Spanned<String>, dir: &Path, p: &mut Problems) -> Option<Scene> {
     let given = spec.get_ref();
-    let scene_spec = if given.starts_with("builtin:") {
-        given.clone()
-    } else {
-        dir.join(given).display().to_string()
-    };
+    let scene_spec = scene_location(given, dir);
     match eyeadapt_scene::resolve_scene(&scene_spec) {
         Ok(s) => Some(s),
         Err(e) => {
@@ -414,37 +432,8 @@ fn temporal(table: Option<&Spanned<TemporalTable>>, p: &mut Problems) -> Tempora
     temporal
 }
 
-/// The job's camera path, else the scene's (already validated by the scene's loader).
-fn camera_path(
-    table: Option<&Spanned<CameraPath>>,
-    scene: Option<&Scene>,
-    p: &mut Problems,
-) -> Option<CameraPath> {
-    match (table, scene.and_then(|s| s.camera_path.clone())) {
-        (Some(v), _) => match v.get_ref().validate() {
-            Ok(()) => Some(v.get_ref().clone()),
-            Err(problems) => {
-                for e in problems {
-                    p.at(v.span().start, format!("camera_path: {e}"));
-                }
-                None
-            }
-        },
-        (None, Some(path)) => Some(path),
-        (None, None) => {
-            if scene.is_some() {
-                p.at(
-                    0,
-                    "the job has no [camera_path] and its scene defines none".into(),
-                );
-            }
-            None
-        }
-    }
-}
-
 /// Every frame of the camera path, narrowed by the job's `frames` key.
-fn job_frames(spec: Option<&Spanned<String>>, path: &CameraPath, p: &mut Problems) -> FrameSet {
+fn job_frames(spec: Option<&Spanned<String>>, path: &CameraMotion, p: &mut Problems) -> FrameSet {
     let all = FrameSet::from_frames(0..path.frame_count() as u32);
     let Some(spec) = spec else {
         return all;

@@ -7,6 +7,8 @@
 
 /// The adaptation step: estimator options, running the estimators, CATs, CSV rows.
 pub mod adapt;
+/// A job's `[camera_path]`: keyframes, a CSV track or a glTF camera.
+pub mod camera_motion;
 /// [`Failure`]: every error, classified into the process exit code.
 mod error;
 /// [`Estimator`]: the estimators by name.

@@ -168,7 +168,7 @@ fn new_manifest(job: &Job, planned: &FrameSet, all: &FrameSet) -> Manifest {
         planned: planned.to_string(),
         job_frames: all.to_string(),
         estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
-        fps: job.path.fps,
+        fps: job.path.fps(),
         settings: RunSettings::of_job(job),
         frames: Default::default(),
     }

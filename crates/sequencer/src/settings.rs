@@ -49,7 +49,7 @@ impl RunSettings {
             max_depth: job.path_settings.max_depth,
             rr_depth: job.path_settings.rr_depth,
             seed: job.seed,
-            fps: job.path.fps,
+            fps: job.path.fps(),
             cat: job.adaptation.cat,
             degree: job.adaptation.degree,
             eye_samples: eye.samples,

@@ -79,7 +79,7 @@ impl Walk<'_> {
 pub(super) fn case6(runs: &[JobRun]) -> Result<(&'static str, Out), Failure> {
     let run = &runs[0];
     let mut o = Out::new();
-    let fps = run.job.path.fps;
+    let fps = run.job.path.fps();
     let shots = &run.shots;
     let first = |pred: &dyn Fn(&Shot) -> bool| shots.iter().find(|s| pred(s)).map(|s| s.frame);
     let walk = Walk {

@@ -41,13 +41,4 @@ impl AnimatedCamera {
             fov_deg: Some(self.fov_deg),
         }
     }
-
-    /// Number of frames at `fps` from time 0 to the end of the animation, both ends included
-    /// when the end falls on a frame (frame 0 is at time 0).
-    pub fn frame_count(&self, fps: f64) -> usize {
-        let frames = self.range.1.max(0.0) * fps;
-        // Blender bakes one sample per frame; 47/24 s is 1.9583333333333333 s and 24 times it
-        // 46.99999999999999: a tolerance far below a frame keeps the last authored frame.
-        (frames + 1e-9).floor() as usize + 1
-    }
 }

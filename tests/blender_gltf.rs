@@ -1,0 +1,183 @@
+//! Blender scenes exported to glTF, against Blender itself (PyPI's `bpy`).
+//!
+//! 1. A walkthrough job whose scene is Blender's `.glb` and that has no camera path follows the
+//!    file's animated camera at 24 fps: one frame per Blender frame, and the CSV's
+//!    `cam_x/y/z` are Blender's evaluated camera positions in glTF's Y-up axes.
+//! 2. A scene lit by a Blender point light renders as Cycles renders it:
+//! `scripts/blender/point_lit.py` builds a closed grey room lit by one 100 W Blender point
+//! light, exports it to `.glb` and renders it with Cycles (no clamping, no light threshold,
+//! 14 bounces, the raw linear "Standard" view). eyeadapt renders the `.glb` at the same size,
+//! spp and depth (max_depth = bounces + 2); the mean pixel values must agree within 5 % per
+//! channel. The light's units are matched by the glTF file alone: Blender writes P/(4π)·683 cd
+//! and eyeadapt reads cd/683 W/sr (`eyeadapt_scene::gltf::LUMENS_PER_WATT`). Without Blender
+//! the test says that it skipped, unless `EYEADAPT_REQUIRE_BLENDER=1`.
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The Python with `bpy`, or `None` after saying why the test skips.
+fn blender_or_skip() -> Option<PathBuf> {
+    match blender_python() {
+        Ok(p) => Some(p),
+        Err(why) => {
+            if std::env::var("EYEADAPT_REQUIRE_BLENDER").as_deref() == Ok("1") {
+                panic!("Blender is required (EYEADAPT_REQUIRE_BLENDER=1) but: {why}");
+            }
+            eprintln!("skipped: Blender (bpy) is not available: {why}");
+            None
+        }
+    }
+}
+
+fn blender_python() -> Result<PathBuf, String> {
+    let out = Command::new("bash")
+        .arg("scripts/blender/install.sh")
+        .output()
+        .map_err(|e| format!("cannot run scripts/blender/install.sh: {e}"))?;
+    if out.status.success() {
+        Ok(PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()))
+    } else {
+        Err(String::from_utf8_lossy(&out.stderr).trim().to_string())
+    }
+}
+
+fn mean_rgb(path: &Path) -> [f64; 3] {
+    use exr::prelude::*;
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![[0f32; 3]; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let px = &img.layer_data.channel_data.pixels.1;
+    let mut sum = [0f64; 3];
+    for p in px {
+        for c in 0..3 {
+            sum[c] += f64::from(p[c]);
+        }
+    }
+    sum.map(|s| s / px.len() as f64)
+}
+
+#[test]
+fn a_blender_point_light_renders_as_in_cycles() {
+    let Some(python) = blender_or_skip() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let (w, h, spp, bounces) = (64, 36, 256, 14);
+    let made = Command::new(&python)
+        .arg("scripts/blender/point_lit.py")
+        .arg(dir.path())
+        .args(["--size", &w.to_string(), &h.to_string()])
+        .args(["--spp", &spp.to_string(), "--bounces", &bounces.to_string()])
+        .output()
+        .expect("run Blender");
+    assert!(
+        made.status.success(),
+        "point_lit.py failed: {}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    let out = dir.path().join("ea");
+    let ran = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .arg("render")
+        .arg(dir.path().join("point_lit.glb"))
+        .args(["--width", &w.to_string(), "--height", &h.to_string()])
+        .args(["--spp", &spp.to_string()])
+        .args(["--max-depth", &(bounces + 2).to_string()])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        ran.status.success(),
+        "eyeadapt render failed: {}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let cycles = mean_rgb(&dir.path().join("cycles.exr"));
+    let ours = mean_rgb(&out.join("raw.exr"));
+    let ratio: Vec<f64> = (0..3).map(|c| ours[c] / cycles[c]).collect();
+    eprintln!("mean RGB: Cycles {cycles:?}, eyeadapt {ours:?}, ratio {ratio:?}");
+    for (c, r) in ratio.iter().enumerate() {
+        assert!(
+            (r - 1.0).abs() <= 0.05,
+            "channel {c}: eyeadapt/Cycles = {r}"
+        );
+    }
+}
+
+#[test]
+fn a_blender_walkthrough_job_follows_the_animated_camera() {
+    let Some(python) = blender_or_skip() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let made = Command::new(&python)
+        .arg("scripts/blender/walkthrough.py")
+        .arg(dir.path())
+        .args(["--frames", "30"])
+        .output()
+        .expect("run Blender");
+    assert!(
+        made.status.success(),
+        "walkthrough.py failed: {}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    // The README's example job, as a user writes it: the scene and nothing about the camera.
+    std::fs::write(
+        dir.path().join("walk.toml"),
+        "scene = \"walkthrough.glb\"\n[render]\nwidth = 16\nheight = 9\nspp = 1\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let ran = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .arg("sequence")
+        .arg(dir.path().join("walk.toml"))
+        .args([
+            "--eye-samples",
+            "64",
+            "--no-report",
+            "--no-progress-bar",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        ran.status.success(),
+        "eyeadapt sequence failed: {}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let blender: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("blender_camera.json")).unwrap())
+            .unwrap();
+    let poses = blender["poses"].as_array().unwrap();
+    let csv = std::fs::read_to_string(out.join("adaptation.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (frame, est, cx) = (col("frame"), col("estimator"), col("cam_x"));
+    let eye_rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r[est] == "eye")
+        .collect();
+    assert_eq!(eye_rows.len(), poses.len(), "one frame per Blender frame");
+    let mut worst: f64 = 0.0;
+    for (row, pose) in eye_rows.iter().zip(poses) {
+        assert_eq!(
+            row[frame].parse::<u64>().unwrap(),
+            pose["frame"].as_u64().unwrap()
+        );
+        for k in 0..3 {
+            let ours: f64 = row[cx + k].parse().unwrap();
+            let theirs = pose["position"][k].as_f64().unwrap();
+            worst = worst.max((ours - theirs).abs());
+            assert!(
+                (ours - theirs).abs() <= 1e-4,
+                "frame {}: cam {k} {ours} vs Blender {theirs}",
+                row[frame]
+            );
+        }
+    }
+    eprintln!("{} frames; largest |cam - Blender| {worst:e}", poses.len());
+}
