@@ -81,7 +81,7 @@ impl CameraMotion {
             CameraMotion::Track { track, .. } => track.range().1,
         };
         let frames = end.max(0.0) * fps;
-        if !(frames < MAX_FRAMES as f64) {
+        if !frames.is_finite() || frames >= MAX_FRAMES as f64 {
             return Err(format!(
                 "{end} s at {fps} fps is {frames:.0} frames, more than the {MAX_FRAMES} a sequence may have"
             ));
