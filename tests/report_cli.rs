@@ -1,5 +1,6 @@
 //! `eyeadapt report --video` where the movies cannot be made (no ffmpeg on PATH): the rest of
 //! the report is written, and the command fails (exit 1) so a scripted job notices.
+mod common;
 use std::process::Command;
 
 #[test]
