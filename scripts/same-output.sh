@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Byte-for-byte comparison of two eyeadapt binaries on the three commands that share the frame
 # pipeline: the demo's first frames (`sequence`), a still with every estimator (`render`) and
-# `paper --quick`. Both binaries run on this machine, so CPU-dependent bits (libm, FMA) cancel
+# `paper --quick`; then two chunks merged and reported, and `plan`. Both binaries run on this machine, so CPU-dependent bits (libm, FMA) cancel
 # out; a difference is a change of behaviour.
 #
 #   scripts/same-output.sh OLD_BINARY NEW_BINARY [WORK_DIR]
@@ -27,6 +27,14 @@ run() {
     "$bin" render builtin:cornell-box --width 48 --height 48 --spp 8 --estimators all \
         --eye-samples 512 --out "$out/render" >"$out/render.log" 2>&1
     "$bin" paper --quick --out "$out/paper" --work "$out/paper-work" >"$out/paper.log" 2>&1
+    # Two chunks of the same frames, merged and reported; the plan of a chunked run.
+    for i in 0 1; do
+        "$bin" sequence --frames 0-3 --chunk-size 2 --chunk-index "$i" --width 32 --height 18 \
+            --spp 2 --eye-samples 128 --out "$out/chunks/$i" --no-progress-bar >"$out/chunk.log" 2>&1
+    done
+    "$bin" merge "$out/chunks/0" "$out/chunks/1" --out "$out/merged" >"$out/merge.log" 2>&1
+    "$bin" report "$out/merged" >"$out/report.log" 2>&1
+    "$bin" plan --frames 0-3 --chunk-size 3 >"$out/plan.txt" 2>&1
     # Logs hold timings; only the files the commands wrote are compared.
     rm "$out"/*.log
 }

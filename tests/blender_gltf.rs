@@ -4,6 +4,7 @@
 //!    file's animated camera at 24 fps: one frame per Blender frame, and the CSV's
 //!    `cam_x/y/z` are Blender's evaluated camera positions in glTF's Y-up axes.
 //! 2. A scene lit by a Blender point light renders as Cycles renders it:
+//!
 //! `scripts/blender/point_lit.py` builds a closed grey room lit by one 100 W Blender point
 //! light, exports it to `.glb` and renders it with Cycles (no clamping, no light threshold,
 //! 14 bounces, the raw linear "Standard" view). eyeadapt renders the `.glb` at the same size,

@@ -321,3 +321,55 @@ fn a_scene_file_given_as_job_says_so() {
         assert!(!dir.join("out").exists(), "nothing may be written: {err}");
     }
 }
+
+/// Options of `render` are checked before anything is rendered: a bad estimator list, CAT or
+/// degree, adaptation options without `--estimators`, or an absurd thread count exit 2 and
+/// leave an earlier render's files byte for byte as they were.
+#[test]
+fn render_options_are_checked_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, GOOD).unwrap();
+    let out = dir.path().join("out");
+    let (scene, out_s) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let base = ["render", scene, "--spp", "1", "--out", out_s];
+    let ok = eyeadapt()
+        .args(base)
+        .args(["--estimators", "grey_world"])
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let before: Vec<(String, Vec<u8>)> = ["raw.exr", "preview.png", "adaptation.csv"]
+        .iter()
+        .map(|f| (f.to_string(), std::fs::read(out.join(f)).unwrap()))
+        .collect();
+    for (bad, needle) in [
+        (
+            &["--estimators", "eye,foo"][..],
+            "unknown estimator \"foo\"",
+        ),
+        (&["--estimators", "eye", "--cat", "cat99"][..], "cat99"),
+        (&["--estimators", "eye", "--degree", "2"][..], "degree 2"),
+        (&["--cat", "cat16"][..], "--estimators"),
+        (&["--degree", "0.5"][..], "--estimators"),
+        (&["--eye-samples", "64"][..], "--estimators"),
+        (&["--threads", "10000"][..], "1024"),
+        (&["--threads", "0"][..], "1024"),
+    ] {
+        let o = eyeadapt().args(base).args(bad).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {err}");
+        assert!(err.contains(needle), "{bad:?}: {err}");
+        for (f, bytes) in &before {
+            assert_eq!(
+                &std::fs::read(out.join(f)).unwrap(),
+                bytes,
+                "{bad:?} changed {f}"
+            );
+        }
+    }
+}

@@ -19,18 +19,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const ARGS: &[&str] = &[
-    "--width",
-    "32",
-    "--height",
-    "18",
-    "--spp",
-    "1",
-    "--eye-samples",
-    "64",
-    "--no-report",
-    "--no-progress-bar",
-];
+const ARGS: &[&str] = &["--width", "32", "--height", "18"];
 
 struct Run {
     code: i32,
@@ -46,6 +35,7 @@ fn sequence(out: &Path, extra: &[&str]) -> Run {
     let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
         .arg("sequence")
         .args(ARGS)
+        .args(common::QUICK)
         .args(frames)
         .args(extra)
         .args(["--out", out.to_str().unwrap()])

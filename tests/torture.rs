@@ -22,20 +22,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-const ARGS: &[&str] = &[
-    "--frames",
-    "0-11",
-    "--width",
-    "8",
-    "--height",
-    "6",
-    "--spp",
-    "1",
-    "--eye-samples",
-    "64",
-    "--no-report",
-    "--no-progress-bar",
-];
+const ARGS: &[&str] = &["--frames", "0-11", "--width", "8", "--height", "6"];
 
 /// Files a run saves: 12 frames × (raw EXR, raw PNG, 8 adapted PNGs).
 const SAVED_LINES: u64 = 12 * 10;
@@ -44,6 +31,7 @@ fn sequence_cmd(out: &Path) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_eyeadapt"));
     c.arg("sequence")
         .args(ARGS)
+        .args(common::QUICK)
         .args(["--out", out.to_str().unwrap()]);
     c
 }

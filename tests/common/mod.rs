@@ -4,6 +4,17 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+/// The cheap tail of a test's `sequence` command line: one sample per pixel, a small eye
+/// budget, no report, no progress bar.
+pub const QUICK: &[&str] = &[
+    "--spp",
+    "1",
+    "--eye-samples",
+    "64",
+    "--no-report",
+    "--no-progress-bar",
+];
+
 /// Every file under `dir`, as (path relative to `dir`, full path); empty when `dir` does not
 /// exist.
 pub fn walk(dir: &Path) -> Vec<(String, PathBuf)> {

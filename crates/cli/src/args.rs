@@ -9,8 +9,8 @@ use std::path::PathBuf;
     about = "Path-traced sequences with eye-centred chromatic adaptation"
 )]
 pub struct Cli {
-    /// Worker threads (default: all cores). Results are identical for any value.
-    #[arg(long, global = true, value_parser = clap::value_parser!(usize))]
+    /// Worker threads, 1 to 1024 (default: all cores). Results are identical for any value.
+    #[arg(long, global = true, value_parser = parse_threads)]
     pub threads: Option<usize>,
     #[command(subcommand)]
     pub command: Command,
@@ -170,6 +170,13 @@ impl SamplingArgs {
     }
 }
 
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if (1..=1024).contains(&n) => Ok(n),
+        _ => Err(format!("\"{s}\" is not a thread count between 1 and 1024")),
+    }
+}
+
 fn parse_max_depth(s: &str) -> Result<i32, String> {
     let v: i32 = s
         .parse()
@@ -209,19 +216,19 @@ pub struct AdaptArgs {
     #[arg(long)]
     pub estimators: Option<String>,
     /// Chromatic adaptation transform: cat02 (default), cat16, bradford, vonkries.
-    #[arg(long)]
+    #[arg(long, requires = "estimators")]
     pub cat: Option<String>,
     /// Degree of adaptation D in [0, 1] (default 1: full adaptation, as in the paper).
-    #[arg(long, conflicts_with = "adapt_luminance")]
+    #[arg(long, conflicts_with = "adapt_luminance", requires = "estimators")]
     pub degree: Option<f64>,
     /// Compute D from the adapting luminance L_A in cd/m² (CIECAM02).
-    #[arg(long)]
+    #[arg(long, requires = "estimators")]
     pub adapt_luminance: Option<f64>,
     /// Surround for D from L_A: average, dim or dark.
     #[arg(long, requires = "adapt_luminance")]
     pub surround: Option<String>,
     /// Exactly this many eye-sensor paths per frame (default: adaptive, 4096-16384).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864), requires = "estimators")]
     pub eye_samples: Option<u32>,
 }
 

@@ -28,17 +28,23 @@ pub fn write_report(dir: &Path, opts: &ReportOptions) -> Result<(), Failure> {
         t.elapsed().as_secs_f64(),
         dir.join("report.html").display()
     );
+    // Videos asked for but not made fail the command (exit 1) once everything else is
+    // written, so a scripted job cannot succeed without them.
     match &s.video {
-        VideoOutcome::NotRequested => {}
-        VideoOutcome::Skipped(why) => println!("report: {why}"),
+        VideoOutcome::NotRequested => Ok(()),
+        VideoOutcome::Skipped(why) => Err(Failure::Other(format!("report --video: {why}"))),
         VideoOutcome::Written { files, problems } => {
             for f in files {
                 println!("report: wrote {}", f.display());
             }
-            for p in problems {
-                println!("report: video problem: {p}");
+            match problems.as_slice() {
+                [] => Ok(()),
+                ps => Err(Failure::Other(format!(
+                    "report --video: {} movie(s) not written: {}",
+                    ps.len(),
+                    ps.join("; ")
+                ))),
             }
         }
     }
-    Ok(())
 }
