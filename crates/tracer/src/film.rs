@@ -214,6 +214,17 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
             rows.push(row);
         }
     }
+    let mut f = assemble(&rows, splats.then_some(beauty.as_slice()), (w, h));
+    f.stats.seconds = start.elapsed().as_secs_f64();
+    f
+}
+
+/// The frame from the rows' accumulators and, with a splatting filter, the beauty sums.
+fn assemble(
+    rows: &[Vec<PixelAcc>],
+    beauty: Option<&[(DVec3, f64)]>,
+    (w, h): (usize, usize),
+) -> Frame {
     let mut f = Frame {
         width: w,
         height: h,
@@ -235,7 +246,7 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
         } else {
             0.0
         };
-        if splats {
+        if let Some(beauty) = beauty {
             let (sum, weight) = beauty[i];
             f.rgb.push(f3(if weight > 0.0 {
                 sum / weight
@@ -259,7 +270,6 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
         f.stats.invalid_samples += acc.invalid as u64;
         f.stats.samples += (acc.valid + acc.invalid) as u64;
     }
-    f.stats.seconds = start.elapsed().as_secs_f64();
     f
 }
 

@@ -92,21 +92,7 @@ impl<'t> Builder<'t> {
         for o in objects {
             self.register(o);
         }
-        for a in &doc.aliases {
-            if self.ids.contains_key(a.to.as_str()) {
-                self.error(
-                    a.at,
-                    format!("<alias as=\"{}\">: the id is already used", a.to),
-                );
-            } else if let Some(o) = self.ids.get(a.from.as_str()) {
-                self.ids.insert(a.to.as_str(), *o);
-            } else {
-                self.error(
-                    a.at,
-                    format!("<alias id=\"{}\">: no object has this id", a.from),
-                );
-            }
-        }
+        self.aliases(doc);
         let mut sensor_seen = false;
         let mut integrator_seen = false;
         for (index, o) in objects.iter().enumerate() {
@@ -208,6 +194,25 @@ impl<'t> Builder<'t> {
             }
         }
         self.check_lights();
+    }
+
+    /// `<alias id="from" as="to">`: `to` names `from`'s object.
+    fn aliases(&mut self, doc: &'t Doc) {
+        for a in &doc.aliases {
+            if self.ids.contains_key(a.to.as_str()) {
+                self.error(
+                    a.at,
+                    format!("<alias as=\"{}\">: the id is already used", a.to),
+                );
+            } else if let Some(o) = self.ids.get(a.from.as_str()) {
+                self.ids.insert(a.to.as_str(), *o);
+            } else {
+                self.error(
+                    a.at,
+                    format!("<alias id=\"{}\">: no object has this id", a.from),
+                );
+            }
+        }
     }
 
     /// Records the ids of `o` and of the objects nested in it.
