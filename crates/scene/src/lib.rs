@@ -19,6 +19,7 @@ mod builtin;
 mod camera;
 mod camera_path;
 mod diagnostic;
+mod fingerprint;
 mod image_file;
 mod instance;
 mod light;
