@@ -2,7 +2,7 @@
 //! benchmarks, whose expected answers are known): every estimator finds the light's colour in
 //! the grey Cornell box, and the eye-centred sensor recovers the reflectance in both worlds of
 //! one reflectance. Also: the same seed gives byte-identical RESULTS.md and contact sheets.
-use eyeadapt_sequencer::paper::{CaseReport, PaperOptions, run};
+use eyeadapt_paper::{CaseReport, PaperOptions, run};
 use std::time::Instant;
 
 fn hue_diff(a: f64, b: f64) -> f64 {

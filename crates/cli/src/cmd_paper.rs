@@ -1,8 +1,8 @@
 //! `eyeadapt paper`: the paper's test cases and its claims, checked (library:
-//! `eyeadapt_sequencer::paper`).
+//! `eyeadapt_paper`).
 use crate::args::PaperArgs;
+use eyeadapt_paper::PaperOptions;
 use eyeadapt_sequencer::Failure;
-use eyeadapt_sequencer::paper::PaperOptions;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -26,7 +26,7 @@ pub fn run(a: PaperArgs) -> Result<(), Failure> {
         verbose: true,
         ..PaperOptions::new(out)
     };
-    let r = eyeadapt_sequencer::paper::run(&o)?;
+    let r = eyeadapt_paper::run(&o)?;
     for c in &r.cases {
         for v in &c.verdicts {
             println!(

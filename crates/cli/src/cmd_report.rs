@@ -1,7 +1,7 @@
 //! `eyeadapt report DIR`, also run at the end of a complete `eyeadapt sequence`.
 use crate::args::ReportArgs;
+use eyeadapt_report::{ReportOptions, VideoOutcome, report};
 use eyeadapt_sequencer::Failure;
-use eyeadapt_sequencer::report::{ReportOptions, VideoOutcome, report};
 use std::path::Path;
 
 pub fn run(a: ReportArgs) -> Result<(), Failure> {

@@ -20,6 +20,7 @@ mod camera;
 mod camera_path;
 mod diagnostic;
 mod fingerprint;
+pub mod gltf;
 mod image_file;
 mod instance;
 mod light;

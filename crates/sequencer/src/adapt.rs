@@ -402,7 +402,7 @@ pub fn apply(m: DMat3, rgb: &[[f32; 3]]) -> Vec<[f32; 3]> {
 pub const CSV_HEADER: &str = "frame,time_s,estimator,X,Y,Z,x,y,u_prime,v_prime,cct_mccamy,r_lin,g_lin,b_lin,std_err_u,std_err_v,n_samples,valid,flags,abs_Y,cam_x,cam_y,cam_z";
 
 /// Writes one CSV number: the shortest round-trip form, `NaN` when not finite.
-pub(crate) fn num(out: &mut String, v: f64) {
+pub fn num(out: &mut String, v: f64) {
     if v.is_finite() {
         // Shortest round-trip representation (exact, stable, diff-friendly). Debug keeps a
         // decimal point on integral values ("1.0"), so readers infer a float column.
@@ -414,7 +414,7 @@ pub(crate) fn num(out: &mut String, v: f64) {
 
 /// The white's columns `X,Y,Z,x,y,u_prime,v_prime,cct_mccamy,r_lin,g_lin,b_lin,` (with the
 /// trailing comma); shared by per-frame rows and the report's derived rows.
-pub(crate) fn white_columns(s: &mut String, xyz: DVec3, valid: bool) {
+pub fn white_columns(s: &mut String, xyz: DVec3, valid: bool) {
     let xy = if valid { xyz_to_xy(xyz) } else { None };
     let uv = if valid { xyz_to_uv(xyz) } else { None };
     for v in [xyz.x, xyz.y, xyz.z] {

@@ -1,5 +1,6 @@
 //! Everything around the renderer: outputs (EXR with AOVs, PNG previews, atomic writes), the
-//! per-frame pipeline, job files, sequences with resume and merge, and reports.
+//! per-frame pipeline, job files, sequences with resume and merge. The report and the paper
+//! harness are the crates above this one (`eyeadapt-report`, `eyeadapt-paper`).
 //!
 //! [`Failure`] classifies every error into the process exit code.
 
@@ -10,9 +11,7 @@ pub mod job;
 pub mod manifest;
 pub mod merge;
 pub mod output;
-pub mod paper;
 pub mod progress;
-pub mod report;
 pub mod resources;
 pub mod sequence;
 pub mod still;

@@ -2,16 +2,16 @@
 //! applied to them (estimators.md §8), and their metrics (§7.2 on the series, §7.3 on the
 //! adapted images).
 use super::table::{Row, Table, derived_row};
-use crate::adapt::{AdaptationSettings, cat_matrix};
-use crate::error::Failure;
-use crate::manifest::Manifest;
-use crate::output::read_exr;
-use crate::sequence::frame_name;
 use eyeadapt_color::{
     D65_XYZ, FilterInit, ImageMetrics, ImageMetricsAccumulator, LabConverter, LuminancePercentile,
     PixelSubset, SeriesMetrics, SeriesParams, SeriesPoint, TemporalFilter, filter_series,
     mean_delta_e, series_metrics, xyz_to_uv,
 };
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::{AdaptationSettings, cat_matrix};
+use eyeadapt_sequencer::manifest::Manifest;
+use eyeadapt_sequencer::output::read_exr;
+use eyeadapt_sequencer::sequence::frame_name;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::collections::HashMap;

@@ -9,14 +9,14 @@ use super::measure::{
 };
 use super::sheet::Tiles;
 use super::{CaseInfo, CaseReport, JobRun, Shot, Verdict};
-use crate::adapt::{Reading, cat_matrix, white_for_cat};
-use crate::error::Failure;
-use crate::job::Job;
 use eyeadapt_color::{
     D65_XYZ, Estimate, FrameAovs, SeriesParams, SeriesPoint, delta_e_2000, delta_uv, hsv_of_linear,
     luminance, rgb_to_xyz, series_metrics, wcam, whiteness, xyz_to_lab, xyz_to_rgb, xyz_to_uv,
 };
 use eyeadapt_scene::{Light, Scene};
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::{Reading, cat_matrix, white_for_cat};
+use eyeadapt_sequencer::job::Job;
 use eyeadapt_tracer::{Frame, View};
 use glam::{DMat3, DVec2, DVec3};
 use std::collections::BTreeMap;
@@ -138,7 +138,7 @@ fn setup_line(run: &JobRun) -> String {
 }
 
 /// The eye sensor's budget as RESULTS.md states it.
-fn eye_budget(e: &crate::adapt::EyeOptions) -> String {
+fn eye_budget(e: &eyeadapt_sequencer::adapt::EyeOptions) -> String {
     if e.target_std_err_uv > 0.0 && e.min_samples() < e.samples {
         format!(
             "{}–{} (until σ(u′v′) ≤ {:e})",

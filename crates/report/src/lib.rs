@@ -27,12 +27,12 @@ pub use coherence::{EstimatorReport, Metric};
 pub use series::{Point, Series};
 pub use video::{VideoOutcome, label_strip};
 
-use crate::adapt::AdaptationSettings;
-use crate::error::Failure;
-use crate::manifest::{CSV, Manifest};
-use crate::output::atomic_write_bytes;
-use crate::sequence::lock_dir;
 use eyeadapt_color::{Cat, DEFAULT_SIGMA_S, DEFAULT_STRIDE};
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::AdaptationSettings;
+use eyeadapt_sequencer::manifest::{CSV, Manifest};
+use eyeadapt_sequencer::output::atomic_write_bytes;
+use eyeadapt_sequencer::sequence::lock_dir;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -172,7 +172,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     }
     derived.sort_by_key(|(frame, order, _)| (*frame, *order));
     let mut csv = String::with_capacity(text.len() + derived.len() * 200);
-    csv.push_str(crate::adapt::CSV_HEADER);
+    csv.push_str(eyeadapt_sequencer::adapt::CSV_HEADER);
     csv.push('\n');
     for r in &tab.rows {
         csv.push_str(&r.line);

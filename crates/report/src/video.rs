@@ -4,10 +4,10 @@
 //! ffmpeg's `drawtext` needs a font file at run time; instead the labels are drawn here with a
 //! built-in 5×7 bitmap font into a PNG strip that ffmpeg stacks above the three panels, so
 //! the movie looks the same on every machine.
-use crate::error::Failure;
-use crate::manifest::Manifest;
-use crate::output::{temp_path, write_png};
-use crate::sequence::frame_name;
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::manifest::Manifest;
+use eyeadapt_sequencer::output::{temp_path, write_png};
+use eyeadapt_sequencer::sequence::frame_name;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -5,8 +5,8 @@
 use super::coherence::EstimatorReport;
 use super::locus;
 use super::series::Series;
-use crate::error::Failure;
 use eyeadapt_color::{D65_XYZ, DEFAULT_DE_THRESHOLD, DEFAULT_THRESHOLDS, xyz_to_rgb, xyz_to_uv};
+use eyeadapt_sequencer::Failure;
 use glam::DVec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -1,6 +1,6 @@
 //! `report.html`: one self-contained page (SVGs inline, no scripts, no external files).
 use super::coherence::{EstimatorReport, has_ratio, ratio};
-use crate::manifest::Manifest;
+use eyeadapt_sequencer::manifest::Manifest;
 use std::fmt::Write;
 
 pub fn escape(s: &str) -> String {
@@ -84,7 +84,7 @@ and <code>shared/design/estimators.md</code> §7–§8.</p>
         name = escape(&m.job_name),
         source = escape(&m.job_source),
         n = m.frames.len(),
-        frames = escape(&crate::manifest::frames_to_spec(
+        frames = escape(&eyeadapt_sequencer::manifest::frames_to_spec(
             &m.frames.keys().copied().collect::<Vec<_>>()
         )),
         fps = m.fps,

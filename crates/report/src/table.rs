@@ -1,8 +1,8 @@
-//! Reading `adaptation.csv` back (a small reader for the file [`crate::adapt::csv_row`]
+//! Reading `adaptation.csv` back (a small reader for the file [`eyeadapt_sequencer::adapt::csv_row`]
 //! writes: no quoting, `;` inside the flags cell) and writing the report's derived rows in
 //! the same schema.
-use crate::adapt::{CSV_HEADER, num};
-use crate::error::Failure;
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::{CSV_HEADER, num};
 use std::collections::BTreeSet;
 use std::fmt::Write;
 use std::path::Path;
@@ -142,7 +142,7 @@ pub fn derived_row(
         None => num(&mut s, time),
     }
     let _ = write!(s, ",{estimator},");
-    crate::adapt::white_columns(&mut s, xyz, valid);
+    eyeadapt_sequencer::adapt::white_columns(&mut s, xyz, valid);
     // std_err_u, std_err_v: empty.
     s.push(',');
     s.push(',');

@@ -2,10 +2,10 @@
 use eyeadapt_color::{
     Cat, D65_XYZ, Estimate, adaptation_matrix_rgb, delta_e_2000, rgb_to_xyz, xyz_to_lab, xyz_to_uv,
 };
+use eyeadapt_report::{ReportOptions, VideoOutcome, report};
 use eyeadapt_sequencer::adapt::{CSV_HEADER, Reading, csv_row};
 use eyeadapt_sequencer::manifest::{FrameEntry, Manifest, file_entry};
 use eyeadapt_sequencer::output::{atomic_write_bytes, write_exr, write_png};
-use eyeadapt_sequencer::report::{ReportOptions, VideoOutcome, report};
 use eyeadapt_sequencer::sequence::frame_name;
 use eyeadapt_tracer::Frame;
 use glam::{DVec3, Vec3};

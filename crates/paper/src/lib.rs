@@ -17,13 +17,13 @@ mod measure;
 mod report;
 mod sheet;
 
-pub use crate::paper::measure::{Region, RegionMean, equal_luminance_hsv, region_mean};
-pub use crate::paper::report::results_markdown;
+pub use crate::measure::{Region, RegionMean, equal_luminance_hsv, region_mean};
+pub use crate::report::results_markdown;
 
-use crate::adapt::{Reading, csv_row, estimate_all};
-use crate::error::Failure;
-use crate::job::{Job, JobOverrides, load_job};
-use crate::output::{atomic_write_bytes, write_exr};
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::{Reading, csv_row, estimate_all};
+use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
+use eyeadapt_sequencer::output::{atomic_write_bytes, write_exr};
 use eyeadapt_tracer::{Frame, RenderSettings, SceneData, View, render};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -52,7 +52,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 5",
         jobs: &[(
             "cornell-orange",
-            include_str!("../../../../configs/cornell-orange.toml"),
+            include_str!("../../../configs/cornell-orange.toml"),
         )],
         quick: &[(64, 64, 16)],
     },
@@ -64,11 +64,11 @@ pub const CASES: &[CaseInfo] = &[
         jobs: &[
             (
                 "white-world-orange-light",
-                include_str!("../../../../configs/white-world-orange-light.toml"),
+                include_str!("../../../configs/white-world-orange-light.toml"),
             ),
             (
                 "orange-world-white-light",
-                include_str!("../../../../configs/orange-world-white-light.toml"),
+                include_str!("../../../configs/orange-world-white-light.toml"),
             ),
         ],
         quick: &[(64, 48, 16), (64, 48, 16)],
@@ -80,7 +80,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 8",
         jobs: &[(
             "cornell-green-floor",
-            include_str!("../../../../configs/cornell-green-floor.toml"),
+            include_str!("../../../configs/cornell-green-floor.toml"),
         )],
         quick: &[(128, 128, 16)],
     },
@@ -91,7 +91,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 9",
         jobs: &[(
             "statue-red-spot",
-            include_str!("../../../../configs/statue-red-spot.toml"),
+            include_str!("../../../configs/statue-red-spot.toml"),
         )],
         quick: &[(128, 96, 64)],
     },
@@ -100,10 +100,7 @@ pub const CASES: &[CaseInfo] = &[
         slug: "case5-two-rooms",
         title: "Two rooms (orange, blue), three views",
         figures: "Fig. 10-12",
-        jobs: &[(
-            "two-rooms",
-            include_str!("../../../../configs/two-rooms.toml"),
-        )],
+        jobs: &[("two-rooms", include_str!("../../../configs/two-rooms.toml"))],
         quick: &[(96, 72, 16)],
     },
     CaseInfo {
@@ -113,7 +110,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 13-15",
         jobs: &[(
             "three-rooms",
-            include_str!("../../../../configs/three-rooms.toml"),
+            include_str!("../../../configs/three-rooms.toml"),
         )],
         quick: &[(96, 54, 4)],
     },
@@ -304,7 +301,7 @@ fn run_job(
     let name = case.jobs[index].0;
     let job = load_case_job(case, index, o, dir)?;
     let data = SceneData::new(&job.scene);
-    let mut csv = String::from(crate::adapt::CSV_HEADER);
+    let mut csv = String::from(eyeadapt_sequencer::adapt::CSV_HEADER);
     csv.push('\n');
     let mut shots = Vec::new();
     for &f in job.frames.as_slice() {
@@ -367,8 +364,8 @@ pub fn run_case(number: u32, o: &PaperOptions) -> Result<CaseReport, Failure> {
         .find(|c| c.number == number)
         .ok_or_else(|| Failure::Input(format!("there is no paper case {number}")))?;
     let dir = o.work_dir().join(case.slug);
-    crate::still::prepare_out_dir(&dir)?;
-    crate::still::prepare_out_dir(&o.out)?;
+    eyeadapt_sequencer::still::prepare_out_dir(&dir)?;
+    eyeadapt_sequencer::still::prepare_out_dir(&o.out)?;
     let keep = case.number != 6;
     let runs = (0..case.jobs.len())
         .map(|i| run_job(case, i, o, &dir, keep))

@@ -4,10 +4,10 @@
 //! (emitters excluded) maps to 0.9, the same exposure for the three tiles of a row, and encoded
 //! with the preview curve (`output::preview_bytes`). Rows and tiles are separated by 4 px of
 //! black.
-use crate::adapt::{AdaptationSettings, Reading, apply, cat_matrix, white_for_cat};
-use crate::error::Failure;
-use crate::output::{atomic_write_bytes, preview_bytes};
 use eyeadapt_color::luminance_f32;
+use eyeadapt_sequencer::Failure;
+use eyeadapt_sequencer::adapt::{AdaptationSettings, Reading, apply, cat_matrix, white_for_cat};
+use eyeadapt_sequencer::output::{atomic_write_bytes, preview_bytes};
 use eyeadapt_tracer::Frame;
 
 pub const TILE_MAX_WIDTH: usize = 192;
