@@ -21,6 +21,7 @@ mod camera_motion;
 mod camera_path;
 mod camera_track;
 mod diagnostic;
+mod fingerprint;
 pub mod gltf;
 mod image_file;
 mod instance;

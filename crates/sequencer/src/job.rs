@@ -480,33 +480,7 @@ pub fn job_hash(job: &Job) -> String {
         job.adaptation,
         job.temporal
     ));
-    let s = &job.scene;
-    for inst in &s.instances {
-        h.update(format!("{inst:?}\n"));
-    }
-    for m in &s.meshes {
-        for p in &m.positions {
-            h.update(bytes3(p.to_array()));
-        }
-        for t in &m.indices {
-            for i in t {
-                h.update(i.to_le_bytes());
-            }
-        }
-        for n in &m.normals {
-            h.update(bytes3(n.to_array()));
-        }
-        for uv in &m.uvs {
-            h.update(format!("{uv:?}"));
-        }
-        for c in &m.colors {
-            h.update(bytes3(c.to_array()));
-        }
-    }
-    h.update(format!(
-        "{:?}\n{:?}\n{:?}\n{:?}\n",
-        s.materials, s.textures, s.lights, s.environment
-    ));
+    h.update(format!("scene {}\n", job.scene.fingerprint()));
     for f in 0..job.path.frame_count() {
         let v = job.view(f as u32);
         h.update(format!(
@@ -519,14 +493,6 @@ pub fn job_hash(job: &Job) -> String {
         ));
     }
     hex(&h.finalize()[..])
-}
-
-fn bytes3(v: [f32; 3]) -> [u8; 12] {
-    let mut b = [0u8; 12];
-    for (i, x) in v.iter().enumerate() {
-        b[i * 4..i * 4 + 4].copy_from_slice(&x.to_bits().to_le_bytes());
-    }
-    b
 }
 
 pub fn hex(bytes: &[u8]) -> String {

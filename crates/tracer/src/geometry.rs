@@ -282,6 +282,7 @@ impl Geometry {
 
     /// The surface at `hit` of the ray from `origin` along `dir`: world-space position,
     /// geometric and shading normals, UV, ∂p/∂u, vertex colour, material and light.
+    #[inline]
     pub fn interaction(&self, origin: Vec3A, dir: Vec3A, hit: &Hit) -> SurfaceInteraction {
         let inst = &self.instances[hit.instance as usize];
         let attr = &self.attributes[inst.mesh as usize];

@@ -64,6 +64,7 @@ pub struct VertexSamples {
 }
 
 impl VertexSamples {
+    #[inline]
     pub fn draw(s: &mut SampleStream) -> VertexSamples {
         let pick = s.next_1d();
         let lobe = s.next_1d();
@@ -83,6 +84,7 @@ impl VertexSamples {
 
 impl Vertex {
     /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there.
+    #[inline]
     pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A) -> Vertex {
         // Shading frame on the viewer's side; every surface reflects on both sides.
         let ng = if si.ng.dot(wo) > 0.0 { si.ng } else { -si.ng };
@@ -99,6 +101,7 @@ impl Vertex {
     }
 
     /// The ray origin for leaving along `wi`, and whether that side is the viewer's.
+    #[inline]
     fn origin_towards(&self, wi: Vec3A) -> (Vec3A, bool) {
         if wi.dot(self.ng) > 0.0 {
             (self.p_front, true)
@@ -109,6 +112,7 @@ impl Vertex {
 }
 
 impl PathState {
+    #[inline]
     pub fn new(o: Vec3A, d: Vec3A, from: Origin, u_light: [f32; 2], aovs: bool) -> PathState {
         PathState {
             o,
@@ -135,6 +139,7 @@ impl PathState {
     }
 
     /// The ray left the scene: the environment, weighted against light sampling.
+    #[inline]
     pub fn escape(&mut self, lights: &LightSet) {
         let Some(env) = lights.env else { return };
         let w = match self.prev {
@@ -153,6 +158,7 @@ impl PathState {
 
     /// The ray hit `si`: first-hit AOVs and the emission seen (front side only), weighted
     /// against light sampling.
+    #[inline]
     pub fn shade_hit(&mut self, scene: &SceneData, si: &SurfaceInteraction) {
         if self.aovs && self.depth == 0 {
             self.out.hit = true;
@@ -180,6 +186,7 @@ impl PathState {
     }
 
     /// Next-event estimation at `v`: one light sample, MIS-weighted against BSDF sampling.
+    #[inline]
     pub fn sample_light(
         &mut self,
         scene: &SceneData,
@@ -227,6 +234,7 @@ impl PathState {
 
     /// Continues the path along a BSDF sample at `v`, reflected or transmitted; false when
     /// the path ends (no sample, or one on the wrong side of the geometric surface).
+    #[inline]
     pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
         let Some(bs) = v.bsdf.sample(v.wo_l, u.lobe, u.bsdf) else {
             return false;
@@ -266,6 +274,7 @@ impl PathState {
     }
 
     /// Russian roulette once `rr_depth` segments are traced; false when the path ends.
+    #[inline]
     pub fn roulette(&mut self, rr_depth: u32, u_rr: f32) -> bool {
         if self.depth >= rr_depth {
             let q = self.beta.max_element().min(0.95);

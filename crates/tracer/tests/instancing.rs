@@ -117,3 +117,49 @@ fn instances_render_the_flattened_image() {
     // The mesh is stored once: the instanced structures are smaller than the baked ones.
     assert!(da.geometry.memory_bytes() < db.geometry.memory_bytes());
 }
+
+/// A displaced grid of about `n` triangles.
+fn grid(n: usize) -> eyeadapt_scene::Mesh {
+    let k = ((n / 2) as f64).sqrt().ceil() as u32;
+    let mut m = eyeadapt_scene::Mesh::default();
+    for j in 0..=k {
+        for i in 0..=k {
+            let (x, z) = (i as f32 / k as f32, j as f32 / k as f32);
+            m.positions
+                .push(Vec3::new(x, 0.05 * (9.0 * x).sin() * (7.0 * z).cos(), z));
+        }
+    }
+    for j in 0..k {
+        for i in 0..k {
+            let v = |a: u32, b: u32| b * (k + 1) + a;
+            m.indices.push([v(i, j), v(i, j + 1), v(i + 1, j + 1)]);
+            m.indices.push([v(i, j), v(i + 1, j + 1), v(i + 1, j)]);
+        }
+    }
+    m
+}
+
+#[test]
+fn a_thousand_instances_cost_little_more_than_one() {
+    let placed = |count: usize| {
+        let mut s = Scene::default();
+        let id = s.add_mesh(grid(100_000));
+        // Two placements at least, so that both scenes use the two-level layout.
+        s.add_instance(id, None, Transform::default());
+        for i in 1..count {
+            let t = Transform {
+                matrix: Mat4::from_translation(Vec3::new((i % 40) as f32, 0.0, (i / 40) as f32)),
+            };
+            s.add_instance(id, None, t);
+        }
+        s.environment = Some(Rgb::ONE);
+        SceneData::new(&s).geometry.memory_bytes()
+    };
+    let (two, thousand) = (placed(2), placed(1000));
+    eprintln!(
+        "100k-triangle mesh: 2 instances {:.1} MB, 1000 instances {:.1} MB",
+        two as f64 / 1e6,
+        thousand as f64 / 1e6
+    );
+    assert!(thousand < two + two / 10, "{thousand} bytes vs {two}");
+}

@@ -219,40 +219,10 @@ impl Ctx<'_> {
                 vec![(sphere_mesh(center, radius, level), material)]
             }
             _ => {
-                let Some(file) = &d.file else {
-                    self.error(
-                        s.span().start,
-                        format!("shapes[{index}] (obj) needs a `file`"),
-                    );
+                let Some(meshes) = self.obj_shape(index, s, material, scene) else {
                     return;
                 };
-                let path = self.dir.join(file.get_ref());
-                match obj::load_obj(&path, material) {
-                    Ok(loaded) => {
-                        for w in loaded.warnings {
-                            self.warning(file.span().start, w);
-                        }
-                        let mut out = Vec::new();
-                        let parts = loaded.meshes.into_iter().zip(loaded.materials);
-                        for ((m, mat), map) in parts.zip(loaded.diffuse_maps) {
-                            let mat = match (material, mat) {
-                                (Some(_), _) => material,
-                                (None, Some(mm)) => {
-                                    let mm =
-                                        self.diffuse_map(mm, map, &path, file.span().start, scene);
-                                    Some(scene.add_material(mm))
-                                }
-                                (None, None) => None,
-                            };
-                            out.push((m, mat));
-                        }
-                        out
-                    }
-                    Err(e) => {
-                        self.error(file.span().start, e);
-                        return;
-                    }
-                }
+                meshes
             }
         };
         if let Some(name) = &d.name {
@@ -408,5 +378,51 @@ impl Ctx<'_> {
             ),
         }
         m
+    }
+}
+
+impl Ctx<'_> {
+    /// The meshes of an `obj` shape with their materials: `material` if given, else each
+    /// model's MTL material (with its `map_Kd`); `None` after an error.
+    fn obj_shape(
+        &mut self,
+        index: usize,
+        s: &Spanned<ShapeDef>,
+        material: Option<MaterialId>,
+        scene: &mut Scene,
+    ) -> Option<Vec<(Mesh, Option<MaterialId>)>> {
+        let d = s.get_ref();
+        let Some(file) = &d.file else {
+            self.error(
+                s.span().start,
+                format!("shapes[{index}] (obj) needs a `file`"),
+            );
+            return None;
+        };
+        let path = self.dir.join(file.get_ref());
+        let loaded = match obj::load_obj(&path, material) {
+            Ok(loaded) => loaded,
+            Err(e) => {
+                self.error(file.span().start, e);
+                return None;
+            }
+        };
+        for w in loaded.warnings {
+            self.warning(file.span().start, w);
+        }
+        let mut out = Vec::new();
+        let parts = loaded.meshes.into_iter().zip(loaded.materials);
+        for ((m, mat), map) in parts.zip(loaded.diffuse_maps) {
+            let mat = match (material, mat) {
+                (Some(_), _) => material,
+                (None, Some(mm)) => {
+                    let mm = self.diffuse_map(mm, map, &path, file.span().start, scene);
+                    Some(scene.add_material(mm))
+                }
+                (None, None) => None,
+            };
+            out.push((m, mat));
+        }
+        Some(out)
     }
 }

@@ -1,0 +1,449 @@
+//! [`Scene::fingerprint`]: a SHA-256 of everything a scene renders from, so that a resumed run
+//! can tell whether its outputs came from the same scene.
+//!
+//! Every type feeds its fields by exhaustive destructuring, so a field added to the model
+//! does not compile until it is fed here (or explicitly declared irrelevant). Each value is
+//! preceded by a tag naming its variant and each sequence by its length, so no two different
+//! scenes feed the same bytes. Floats feed their bits: −0.0 and 0.0 differ, which can only
+//! make a resume refuse, never mix scenes.
+use crate::{
+    Bitmap, Bsdf, Camera, CameraPath, FilterType, Image, Instance, Keyframe, Light, Material, Mesh,
+    Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform, WrapMode,
+};
+use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
+use sha2::{Digest, Sha256};
+
+/// Something that contributes to a fingerprint.
+trait Feed {
+    fn feed(&self, h: &mut Sha256);
+}
+
+impl Scene {
+    /// Hex SHA-256 of the scene's content: camera, materials, textures (decoded texels
+    /// included), meshes, instances, lights, environment, render defaults and camera path.
+    /// The file it came from and its load warnings are not content and are left out.
+    pub fn fingerprint(&self) -> String {
+        let mut h = Sha256::new();
+        h.update(b"eyeadapt scene v1\n");
+        self.feed(&mut h);
+        h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+    }
+}
+
+fn tag(h: &mut Sha256, t: u8) {
+    h.update([t]);
+}
+
+impl Feed for f32 {
+    fn feed(&self, h: &mut Sha256) {
+        h.update(self.to_bits().to_le_bytes());
+    }
+}
+
+impl Feed for f64 {
+    fn feed(&self, h: &mut Sha256) {
+        h.update(self.to_bits().to_le_bytes());
+    }
+}
+
+impl Feed for u32 {
+    fn feed(&self, h: &mut Sha256) {
+        h.update(self.to_le_bytes());
+    }
+}
+
+impl Feed for i32 {
+    fn feed(&self, h: &mut Sha256) {
+        h.update(self.to_le_bytes());
+    }
+}
+
+impl Feed for u64 {
+    fn feed(&self, h: &mut Sha256) {
+        h.update(self.to_le_bytes());
+    }
+}
+
+impl Feed for bool {
+    fn feed(&self, h: &mut Sha256) {
+        h.update([*self as u8]);
+    }
+}
+
+impl Feed for str {
+    fn feed(&self, h: &mut Sha256) {
+        (self.len() as u64).feed(h);
+        h.update(self.as_bytes());
+    }
+}
+
+impl Feed for String {
+    fn feed(&self, h: &mut Sha256) {
+        self.as_str().feed(h);
+    }
+}
+
+impl<T: Feed> Feed for [T] {
+    fn feed(&self, h: &mut Sha256) {
+        (self.len() as u64).feed(h);
+        for x in self {
+            x.feed(h);
+        }
+    }
+}
+
+impl<T: Feed> Feed for Vec<T> {
+    fn feed(&self, h: &mut Sha256) {
+        self.as_slice().feed(h);
+    }
+}
+
+impl<T: Feed, const N: usize> Feed for [T; N] {
+    fn feed(&self, h: &mut Sha256) {
+        for x in self {
+            x.feed(h);
+        }
+    }
+}
+
+impl<T: Feed> Feed for Option<T> {
+    fn feed(&self, h: &mut Sha256) {
+        match self {
+            None => tag(h, 0),
+            Some(x) => {
+                tag(h, 1);
+                x.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for Vec2 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_array().feed(h);
+    }
+}
+
+impl Feed for Vec3 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_array().feed(h);
+    }
+}
+
+impl Feed for DVec3 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_array().feed(h);
+    }
+}
+
+impl Feed for Mat4 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_cols_array().feed(h);
+    }
+}
+
+impl Feed for Affine2 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_cols_array().feed(h);
+    }
+}
+
+impl Feed for Scene {
+    fn feed(&self, h: &mut Sha256) {
+        let Scene {
+            source: _,
+            camera,
+            materials,
+            textures,
+            meshes,
+            instances,
+            lights,
+            environment,
+            render,
+            camera_path,
+            warnings: _,
+        } = self;
+        camera.feed(h);
+        materials.feed(h);
+        textures.feed(h);
+        meshes.feed(h);
+        instances.feed(h);
+        lights.feed(h);
+        environment.feed(h);
+        render.feed(h);
+        camera_path.feed(h);
+    }
+}
+
+impl Feed for Camera {
+    fn feed(&self, h: &mut Sha256) {
+        let Camera {
+            position,
+            look_at,
+            up,
+            fov_deg,
+            width,
+            height,
+        } = self;
+        position.feed(h);
+        look_at.feed(h);
+        up.feed(h);
+        fov_deg.feed(h);
+        width.feed(h);
+        height.feed(h);
+    }
+}
+
+impl<T: Feed> Feed for Param<T> {
+    fn feed(&self, h: &mut Sha256) {
+        match self {
+            Param::Const(x) => {
+                tag(h, 0);
+                x.feed(h);
+            }
+            Param::Texture(t) => {
+                tag(h, 1);
+                t.0.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for Material {
+    fn feed(&self, h: &mut Sha256) {
+        let Material {
+            name,
+            bsdf,
+            emission,
+        } = self;
+        name.feed(h);
+        emission.feed(h);
+        match bsdf {
+            Bsdf::Diffuse { reflectance } => {
+                tag(h, 0);
+                reflectance.feed(h);
+            }
+            Bsdf::Conductor {
+                alpha,
+                eta,
+                k,
+                specular_reflectance,
+            } => {
+                tag(h, 1);
+                alpha.feed(h);
+                eta.feed(h);
+                k.feed(h);
+                specular_reflectance.feed(h);
+            }
+            Bsdf::Plastic {
+                reflectance,
+                alpha,
+                ior,
+            } => {
+                tag(h, 2);
+                reflectance.feed(h);
+                alpha.feed(h);
+                ior.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for Texture {
+    fn feed(&self, h: &mut Sha256) {
+        match self {
+            Texture::Bitmap(b) => {
+                tag(h, 0);
+                b.feed(h);
+            }
+            Texture::Checkerboard {
+                color0,
+                color1,
+                to_uv,
+            } => {
+                tag(h, 1);
+                color0.feed(h);
+                color1.feed(h);
+                to_uv.feed(h);
+            }
+            Texture::MeshAttribute { name } => {
+                tag(h, 2);
+                name.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for Bitmap {
+    fn feed(&self, h: &mut Sha256) {
+        let Bitmap {
+            filename,
+            image,
+            raw,
+            filter,
+            wrap,
+            to_uv,
+        } = self;
+        filename.to_string_lossy().feed(h);
+        let Image {
+            width,
+            height,
+            texels,
+        } = image.as_ref();
+        width.feed(h);
+        height.feed(h);
+        texels.feed(h);
+        raw.feed(h);
+        tag(
+            h,
+            match filter {
+                FilterType::Nearest => 0,
+                FilterType::Bilinear => 1,
+            },
+        );
+        tag(
+            h,
+            match wrap {
+                WrapMode::Repeat => 0,
+                WrapMode::Mirror => 1,
+                WrapMode::Clamp => 2,
+            },
+        );
+        to_uv.feed(h);
+    }
+}
+
+impl Feed for std::borrow::Cow<'_, str> {
+    fn feed(&self, h: &mut Sha256) {
+        self.as_ref().feed(h);
+    }
+}
+
+impl Feed for Mesh {
+    fn feed(&self, h: &mut Sha256) {
+        let Mesh {
+            name,
+            positions,
+            indices,
+            normals,
+            uvs,
+            colors,
+        } = self;
+        name.feed(h);
+        positions.feed(h);
+        indices.feed(h);
+        normals.feed(h);
+        uvs.feed(h);
+        colors.feed(h);
+    }
+}
+
+impl Feed for Instance {
+    fn feed(&self, h: &mut Sha256) {
+        let Instance {
+            mesh,
+            material,
+            to_world: Transform { matrix },
+        } = self;
+        mesh.0.feed(h);
+        material.map(|m| m.0).feed(h);
+        matrix.feed(h);
+    }
+}
+
+impl Feed for Light {
+    fn feed(&self, h: &mut Sha256) {
+        match self {
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                tag(h, 0);
+                position.feed(h);
+                intensity.feed(h);
+            }
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cone_deg,
+                falloff_deg,
+            } => {
+                tag(h, 1);
+                position.feed(h);
+                direction.feed(h);
+                intensity.feed(h);
+                cone_deg.feed(h);
+                falloff_deg.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for RenderDefaults {
+    fn feed(&self, h: &mut Sha256) {
+        let RenderDefaults {
+            spp,
+            max_depth,
+            rr_depth,
+            seed,
+            filter,
+        } = self;
+        spp.feed(h);
+        max_depth.feed(h);
+        rr_depth.feed(h);
+        seed.feed(h);
+        filter.feed(h);
+    }
+}
+
+impl Feed for PixelFilter {
+    fn feed(&self, h: &mut Sha256) {
+        match *self {
+            PixelFilter::Box => tag(h, 0),
+            PixelFilter::Tent { radius } => {
+                tag(h, 1);
+                radius.feed(h);
+            }
+            PixelFilter::Gaussian { stddev, radius } => {
+                tag(h, 2);
+                stddev.feed(h);
+                radius.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for CameraPath {
+    fn feed(&self, h: &mut Sha256) {
+        let CameraPath { fps, keyframes } = self;
+        fps.feed(h);
+        keyframes.feed(h);
+    }
+}
+
+impl Feed for Keyframe {
+    fn feed(&self, h: &mut Sha256) {
+        let Keyframe {
+            time,
+            position,
+            orientation,
+            fov_deg,
+        } = self;
+        time.feed(h);
+        position.feed(h);
+        match orientation {
+            Orientation::LookAt { look_at, up } => {
+                tag(h, 0);
+                look_at.feed(h);
+                up.feed(h);
+            }
+            Orientation::YawPitch { yaw_deg, pitch_deg } => {
+                tag(h, 1);
+                yaw_deg.feed(h);
+                pitch_deg.feed(h);
+            }
+        }
+        fov_deg.feed(h);
+    }
+}
