@@ -175,7 +175,11 @@ fn job_format_doc_lists_the_real_defaults_and_its_example_renders() {
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/job-format.md"))
         .unwrap();
     let blocks = fenced_toml(&doc);
-    assert_eq!(blocks.len(), 2, "a complete example and a typical job");
+    assert_eq!(
+        blocks.len(),
+        3,
+        "a complete example, a typical job and a glTF walkthrough"
+    );
     let dir = tempfile::tempdir().unwrap();
     // The complete example spells out every default: it must be the same job as one that
     // names only its scene.
@@ -187,6 +191,19 @@ fn job_format_doc_lists_the_real_defaults_and_its_example_renders() {
     assert_eq!(full["EYEADAPT_JOB_NAME"], "walkthrough");
     assert_eq!(full["EYEADAPT_JOB_HASH"], bare["EYEADAPT_JOB_HASH"]);
     assert_eq!(full["EYEADAPT_FRAMES"], bare["EYEADAPT_FRAMES"]);
+
+    // The glTF walkthrough's keys, on the corpus's small animated file (one second at 24 fps)
+    // with its camera and animation named as the example names them.
+    let gltf = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/corpus/good/walk.gltf"
+    ))
+    .unwrap()
+    .replace("\"Walk\"", "\"CameraAction\"");
+    std::fs::write(dir.path().join("walk.glb"), gltf).unwrap();
+    let walk = dir.path().join("walk.toml");
+    std::fs::write(&walk, &blocks[2]).unwrap();
+    assert_eq!(plan(&walk)["EYEADAPT_FRAMES"], "25");
 
     // The typical job: 48 of its 49 frames; two of them rendered, tiny.
     let typical = dir.path().join("typical.toml");

@@ -69,8 +69,12 @@ fn camera_poses_match_blender_at_every_frame() {
     let poses = blender["poses"].as_array().unwrap();
     let cam = load_camera(&dir.path().join("walkthrough.glb"), None, None).unwrap();
     assert_eq!(cam.name, "Eye");
+    let motion = eyeadapt_scene::CameraMotion::Gltf {
+        camera: Box::new(cam.clone()),
+        fps,
+    };
     assert_eq!(
-        cam.frame_count(fps),
+        motion.frame_count(),
         poses.len(),
         "frames from time 0 to the end"
     );

@@ -94,9 +94,13 @@ fn from_table(
                 keyframes: keyframes.clone(),
             };
             path.validate().map_err(|problems| {
-                // Each problem already names `camera_path`.
+                // Some problems name their field (`camera_path.keyframes[1]: …`), some do not.
                 let all: Vec<String> = problems.iter().map(|e| e.to_string()).collect();
-                all.join("; ")
+                let all = all.join("; ");
+                match all.strip_prefix("camera_path: ") {
+                    Some(rest) => format!("camera_path: {rest}"),
+                    None => format!("camera_path: {all}"),
+                }
             })?;
             Ok(CameraMotion::Keyframes(path))
         }
