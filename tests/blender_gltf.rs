@@ -1,9 +1,12 @@
 //! Blender scenes exported to glTF, against Blender itself (PyPI's `bpy`).
 //!
-//! 1. A walkthrough job whose scene is Blender's `.glb` and that has no camera path follows the
+//! 1. The camera of Blender's `.glb` (a two-room walkthrough whose Bezier-keyframed camera
+//!    turns by 210°) has, at every frame, Blender's own evaluated `matrix_world` pose within
+//!    1e-4 (`eyeadapt_scene::gltf::load_camera`).
+//! 2. A walkthrough job whose scene is Blender's `.glb` and that has no camera path follows the
 //!    file's animated camera at 24 fps: one frame per Blender frame, and the CSV's
 //!    `cam_x/y/z` are Blender's evaluated camera positions in glTF's Y-up axes.
-//! 2. A scene lit by a Blender point light renders as Cycles renders it:
+//! 3. A scene lit by a Blender point light renders as Cycles renders it:
 //!
 //! `scripts/blender/point_lit.py` builds a closed grey room lit by one 100 W Blender point
 //! light, exports it to `.glb` and renders it with Cycles (no clamping, no light threshold,
@@ -12,6 +15,7 @@
 //! channel. The light's units are matched by the glTF file alone: Blender writes P/(4π)·683 cd
 //! and eyeadapt reads cd/683 W/sr (`eyeadapt_scene::gltf::LUMENS_PER_WATT`). Without Blender
 //! the test says that it skipped, unless `EYEADAPT_REQUIRE_BLENDER=1`.
+use eyeadapt_scene::gltf::load_camera;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -181,4 +185,90 @@ fn a_blender_walkthrough_job_follows_the_animated_camera() {
         }
     }
     eprintln!("{} frames; largest |cam - Blender| {worst:e}", poses.len());
+}
+
+fn vec3(v: &serde_json::Value) -> glam::DVec3 {
+    let a: Vec<f64> = v
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect();
+    glam::DVec3::new(a[0], a[1], a[2])
+}
+
+#[test]
+fn camera_poses_match_blender_at_every_frame() {
+    let Some(python) = blender_or_skip() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let status = Command::new(&python)
+        .arg("scripts/blender/walkthrough.py")
+        .arg(dir.path())
+        .args(["--frames", "48"])
+        .output()
+        .expect("run Blender");
+    assert!(
+        status.status.success(),
+        "walkthrough.py failed: {}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let blender: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("blender_camera.json")).unwrap())
+            .unwrap();
+    let fps = blender["fps"].as_f64().unwrap();
+    let poses = blender["poses"].as_array().unwrap();
+    let cam = load_camera(&dir.path().join("walkthrough.glb"), None, None).unwrap();
+    assert_eq!(cam.name, "Eye");
+    let motion = eyeadapt_scene::CameraMotion::Gltf {
+        camera: Box::new(cam.clone()),
+        fps,
+    };
+    assert_eq!(
+        motion.frame_count(),
+        poses.len(),
+        "frames from time 0 to the end"
+    );
+    let fov = blender["yfov_deg"].as_f64().unwrap();
+    assert!(
+        (cam.fov_deg - fov).abs() < 1e-4,
+        "yfov {} vs Blender {fov}",
+        cam.fov_deg
+    );
+    let mut worst: f64 = 0.0;
+    let mut turn: f64 = 0.0;
+    let mut previous: Option<glam::DVec3> = None;
+    for p in poses {
+        let frame = p["frame"].as_u64().unwrap() as f64;
+        let pose = cam.pose(frame / fps);
+        for (ours, theirs) in [
+            (pose.position, vec3(&p["position"])),
+            (pose.forward, vec3(&p["forward"])),
+            (pose.up, vec3(&p["up"])),
+        ] {
+            let d = (ours - theirs).abs().max_element();
+            worst = worst.max(d);
+            assert!(
+                d <= 1e-4,
+                "frame {frame}: {ours} vs Blender {theirs} (|Δ| {d:e})"
+            );
+        }
+        // The authored turn: the gaze's heading about +y adds up to more than 180°.
+        let flat = glam::DVec3::new(pose.forward.x, 0.0, pose.forward.z).normalize();
+        if let Some(prev) = previous {
+            turn += prev.angle_between(flat);
+        }
+        previous = Some(flat);
+    }
+    eprintln!(
+        "{} frames, largest |Δ| against Blender {worst:e}, total turn {:.1}°",
+        poses.len(),
+        turn.to_degrees()
+    );
+    assert!(
+        turn.to_degrees() > 180.0,
+        "the camera turns by {}°",
+        turn.to_degrees()
+    );
 }
