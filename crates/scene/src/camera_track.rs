@@ -21,7 +21,7 @@
 //! animations, so a track exported one row per frame is reproduced exactly at its frames.
 use crate::track::{Interpolation, Track};
 use crate::{CameraPose, Diagnostic, SceneError, Severity};
-use glam::{DMat3, DQuat, DVec3};
+use glam::{DQuat, DVec3};
 use std::path::{Path, PathBuf};
 
 /// Most rows a track may have (a day at 120 fps is about 10⁷).
@@ -266,15 +266,11 @@ impl Columns {
     }
 }
 
-/// The rotation taking the camera frame (−z forward, +y up) to look from `p` at `target`.
+/// The rotation taking the camera frame (−z forward, +y up) to look from `p` at `target`, on
+/// the keyframe paths' own look-at basis.
 fn look_at(p: DVec3, target: DVec3, up: DVec3) -> Option<DQuat> {
-    let forward = (target - p).try_normalize()?;
-    let right = forward.cross(up.try_normalize()?);
-    if right.length() < 1e-6 {
-        return None;
-    }
-    let right = right.normalize();
-    Some(DQuat::from_mat3(&DMat3::from_cols(right, right.cross(forward), -forward)).normalize())
+    let basis = crate::camera_path::orientation::look_at_basis(p, target, up)?;
+    Some(DQuat::from_mat3(&basis).normalize())
 }
 
 #[cfg(test)]

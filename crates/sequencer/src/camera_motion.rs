@@ -106,6 +106,10 @@ fn from_table(
         }
         (None, Some(file)) => {
             let fps = t.fps.unwrap_or(DEFAULT_FPS);
+            // A `frame` column is divided by fps: check it before the rows are read.
+            if !(fps.is_finite() && fps > 0.0) {
+                return Err(format!("camera_path: fps = {fps} is not a positive number"));
+            }
             let track = CameraTrack::read_csv(&dir.join(file), fps).map_err(|e| e.to_string())?;
             Ok(CameraMotion::Track { track, fps })
         }

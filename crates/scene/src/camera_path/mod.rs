@@ -63,7 +63,7 @@
 //! keyframe's time when it falls on a frame ([`CameraPath::frame_count`]).
 
 mod keyframe_toml;
-mod orientation;
+pub(crate) mod orientation;
 mod spline;
 #[cfg(test)]
 mod tests;

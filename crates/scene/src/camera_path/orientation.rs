@@ -30,7 +30,7 @@ pub(super) fn orientation_quat(k: &Keyframe) -> DQuat {
 
 /// Columns (right, up, −forward), or `None` when the direction is degenerate or `up` is
 /// (nearly) parallel to it.
-pub(super) fn look_at_basis(position: DVec3, look_at: DVec3, up: DVec3) -> Option<DMat3> {
+pub(crate) fn look_at_basis(position: DVec3, look_at: DVec3, up: DVec3) -> Option<DMat3> {
     let forward = (look_at - position).try_normalize()?;
     let right = forward.cross(up.try_normalize()?);
     // sin of the angle between up and forward; below 1e-6 the roll is numerically meaningless.
