@@ -26,7 +26,8 @@ pub enum Command {
     Sequence(Box<SequenceArgs>),
     /// Print the frame and chunk counts of a job (shell-evaluable, for farm submitters).
     Plan(Box<SequenceArgs>),
-    /// Join chunk output directories into one sequence (refuses gaps and conflicts).
+    /// Join chunk output directories into one sequence (verifies every file; refuses gaps,
+    /// conflicts and damaged chunks).
     Merge(MergeArgs),
     /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).
     Scenes,
@@ -131,6 +132,10 @@ pub struct MergeArgs {
     /// Merged output directory.
     #[arg(long)]
     pub out: PathBuf,
+    /// Frames the merge must cover (default: the job's own frames, whatever each chunk
+    /// selected); frames of the inputs outside it are left out.
+    #[arg(long)]
+    pub frames: Option<String>,
 }
 
 /// Sampling options shared by `render` and `sequence`.

@@ -124,10 +124,22 @@ pub fn plan(a: SequenceArgs) -> Result<(), Failure> {
 }
 
 pub fn merge(a: MergeArgs) -> Result<(), Failure> {
-    let s = eyeadapt_sequencer::merge::merge(&a.dirs, &a.out)?;
+    let frames = match &a.frames {
+        Some(spec) => Some(
+            spec.parse::<FrameSet>()
+                .map_err(|e| Failure::Input(format!("--frames: {e}")))?,
+        ),
+        None => None,
+    };
+    let s = eyeadapt_sequencer::merge::merge(&a.dirs, &a.out, frames.as_ref())?;
+    let left_out = match s.left_out {
+        0 => String::new(),
+        n => format!("; {n} frame(s) outside --frames left out"),
+    };
     println!(
-        "merged {} frame(s) from {} director{} ({} identical duplicate(s)) into {}",
+        "merged {} frame(s) ({}) from {} director{} ({} identical duplicate(s){left_out}) into {}",
         s.frames,
+        s.selection,
         s.sources,
         if s.sources == 1 { "y" } else { "ies" },
         s.duplicates,

@@ -158,15 +158,15 @@ pub fn sync_csv(dir: &Path, m: &Manifest) -> Result<bool, Failure> {
     Ok(true)
 }
 
-fn new_manifest(job: &Job, planned: &FrameSet, all: &FrameSet) -> Manifest {
+fn new_manifest(job: &Job, planned: &FrameSet) -> Manifest {
     Manifest {
-        format: 1,
+        format: crate::manifest::FORMAT,
         tool: format!("eyeadapt {}", env!("CARGO_PKG_VERSION")),
         job_name: job.name.clone(),
         job_source: job.source.clone(),
         job_hash: job.hash.clone(),
         planned: planned.to_string(),
-        job_frames: all.to_string(),
+        job_frames: job.frames.to_string(),
         estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
         fps: job.path.fps(),
         settings: RunSettings::of_job(job),
@@ -188,7 +188,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     crate::still::prepare_out_dir(&o.out)?;
     let _lock = lock_dir(&o.out)?;
     remove_stale_temps(&o.out)?;
-    let (mut m, damaged) = open_manifest(job, o, &planned, &all)?;
+    let (mut m, damaged) = open_manifest(job, o, &planned)?;
     m.save(&o.out)?;
     sync_csv(&o.out, &m)?;
 
@@ -252,12 +252,12 @@ fn open_manifest(
     job: &Job,
     o: &SequenceOptions,
     planned: &FrameSet,
-    all: &FrameSet,
 ) -> Result<(Manifest, FrameSet), Failure> {
     let mut m = match Manifest::load(&o.out)? {
         Some(m) if m.job_hash == job.hash => Manifest {
+            format: crate::manifest::FORMAT,
             planned: planned.to_string(),
-            job_frames: all.to_string(),
+            job_frames: job.frames.to_string(),
             ..m
         },
         Some(m) if !o.force => {
@@ -272,7 +272,7 @@ fn open_manifest(
                 crate::manifest::short_hash(&job.hash)
             )));
         }
-        _ => new_manifest(job, planned, all),
+        _ => new_manifest(job, planned),
     };
     // Forget frames whose files are gone or damaged; they will be rendered again.
     let damaged = FrameSet::from_frames(
