@@ -106,6 +106,9 @@ fn chunks_chosen_in_every_way_merge_into_the_whole_run() {
     );
 }
 
+/// Damages a chunk directory in place.
+type Damage<'a> = &'a dyn Fn(&Path);
+
 /// Damages a copy of a good chunk in one way; the merge must exit 2 naming the chunk, the
 /// frame and the file, and leave `--out` as it was (a good earlier merge, or nothing).
 #[test]
@@ -121,7 +124,7 @@ fn damaged_chunks_are_refused_before_anything_is_written() {
     let before = snapshot(&good);
 
     let exr = "frames/raw/frame_000004.exr";
-    let damages: [(&str, &dyn Fn(&Path), &str); 3] = [
+    let damages: [(&str, Damage, &str); 3] = [
         (
             "truncated",
             &|d| {
