@@ -482,6 +482,7 @@ fn nan_samples_are_counted_dropped_and_flagged_per_frame() {
         verify: false,
         log_format: eyeadapt_sequencer::progress::LogFormat::Plain,
         plain_progress: true,
+        stop: None,
     };
     let s = run_sequence(&job, &opts).unwrap();
     assert_eq!(s.rendered, 2);

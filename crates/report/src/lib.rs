@@ -39,6 +39,20 @@ use eyeadapt_sequencer::output::atomic_write_bytes;
 use eyeadapt_sequencer::sequence::lock_dir;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A report step's name and, for steps that count, (done, total).
+pub type StepFn = dyn Fn(&str, Option<(usize, usize)>) + Send + Sync;
+
+/// Told where a report is, step by step.
+#[derive(Clone)]
+pub struct ReportProgress(pub Arc<StepFn>);
+
+impl std::fmt::Debug for ReportProgress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ReportProgress")
+    }
+}
 
 /// What `report` does besides the metrics.
 #[derive(Clone, Debug)]
@@ -49,6 +63,16 @@ pub struct ReportOptions {
     pub sigma_s: f64,
     /// The ffmpeg program (looked up on PATH unless it is a path).
     pub ffmpeg: PathBuf,
+    /// Where the report is, for progress displays.
+    pub progress: Option<ReportProgress>,
+}
+
+impl ReportOptions {
+    fn step(&self, name: &str, count: Option<(usize, usize)>) {
+        if let Some(p) = &self.progress {
+            (p.0)(name, count);
+        }
+    }
 }
 
 impl Default for ReportOptions {
@@ -57,6 +81,7 @@ impl Default for ReportOptions {
             video: false,
             sigma_s: DEFAULT_SIGMA_S,
             ffmpeg: PathBuf::from("ffmpeg"),
+            progress: None,
         }
     }
 }
@@ -96,6 +121,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     let mut notes = Vec::new();
 
     // 1. The CSV.
+    opts.step("adaptation.csv and temporal filters", None);
     let csv_path = dir.join(CSV);
     let text = std::fs::read_to_string(&csv_path)
         .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
@@ -108,7 +134,8 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     let (all, derived_rows) = filter_and_rewrite(&csv_path, &text, &tab, &base, &presets)?;
 
     // 3. Metrics.
-    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE)?;
+    let on_frame = |done, total| opts.step("image metrics (raw EXRs)", Some((done, total)));
+    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE, &on_frame)?;
     let image = match image {
         Ok(p) => Some(p),
         Err(why) => {
@@ -129,6 +156,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     }
 
     // 4. Files.
+    opts.step("plots and report.html", None);
     let files = write_files(
         dir,
         &Written {
@@ -144,6 +172,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
 
     // 5. Video.
     let video = if opts.video {
+        opts.step("video (ffmpeg)", None);
         video::videos(dir, &m, &opts.ffmpeg)?
     } else {
         VideoOutcome::NotRequested

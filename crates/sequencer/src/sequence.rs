@@ -16,13 +16,15 @@ use crate::frames::FrameSet;
 use crate::job::Job;
 use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry};
 use crate::output::atomic_write_bytes;
-use crate::pipeline::{FrameResult, Layout, WriteSpec, frame_name, write_images};
+use crate::pipeline::{FrameResult, FrameStep, Layout, WriteSpec, frame_name, write_images};
 use crate::progress::{LogFormat, Progress};
 use crate::settings::RunSettings;
+use crate::stop::StopRequest;
 use eyeadapt_tracer::SceneData;
 use std::fs::OpenOptions;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 #[derive(Clone, Debug)]
@@ -37,6 +39,8 @@ pub struct SequenceOptions {
     pub verify: bool,
     pub log_format: LogFormat,
     pub plain_progress: bool,
+    /// Checked before each frame: a signal handler's request to stop.
+    pub stop: Option<Arc<StopRequest>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -48,6 +52,8 @@ pub struct SequenceSummary {
     pub render_seconds: f64,
     /// Every frame of the job's selection is committed in this directory.
     pub complete: bool,
+    /// The signal that stopped the run before all its frames were done.
+    pub stopped: Option<i32>,
 }
 
 /// (frames this run is responsible for, the job's whole selection): the job's frames
@@ -147,11 +153,24 @@ pub fn csv_from_rows(dir: &Path, m: &Manifest) -> Result<String, Failure> {
     Ok(csv)
 }
 
-/// Rewrites adaptation.csv from the row files unless it already holds exactly that.
+/// Rewrites adaptation.csv from the row files unless it already holds exactly that, or that
+/// followed by rows a report derived from it (estimator names with `+`, such as
+/// `eye+fairchild`; only `report` writes them), so that a rerun which renders nothing leaves
+/// a finished directory's CSV, and so its report, as they are.
 pub fn sync_csv(dir: &Path, m: &Manifest) -> Result<bool, Failure> {
     let want = csv_from_rows(dir, m)?;
     let p = dir.join(CSV);
-    if std::fs::read(&p).is_ok_and(|have| have == want.as_bytes()) {
+    let derived_tail = |rest: &[u8]| {
+        rest.is_empty()
+            || std::str::from_utf8(rest).is_ok_and(|t| {
+                t.ends_with('\n')
+                    && t.lines()
+                        .all(|l| l.split(',').nth(2).is_some_and(|e| e.contains('+')))
+            })
+    };
+    if std::fs::read(&p)
+        .is_ok_and(|have| have.strip_prefix(want.as_bytes()).is_some_and(derived_tail))
+    {
         return Ok(false);
     }
     atomic_write_bytes(&p, want.as_bytes())?;
@@ -202,6 +221,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         ..Default::default()
     };
     let mut progress = Progress::new(todo.len(), o.log_format, o.plain_progress);
+    progress.note(&startup_line(job, o, &planned, todo.len(), summary.skipped));
     if !damaged.is_empty() {
         progress.note(&format!(
             "re-rendering {} frame(s) whose files were missing or damaged: {}",
@@ -209,22 +229,26 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             damaged
         ));
     }
-    if summary.skipped > 0 {
-        progress.note(&format!(
-            "resuming: {} of {} frame(s) already complete",
-            summary.skipped,
-            planned.len()
-        ));
+    let stop = o.stop.as_deref();
+    if let Some(s) = stop {
+        s.set_committed(summary.skipped);
     }
     if !todo.is_empty() {
         let data = SceneData::new(&job.scene);
         for (i, &f) in todo.iter().enumerate() {
-            progress.frame_started(f, i);
+            if let Some(sig) = stop.and_then(StopRequest::requested) {
+                summary.stopped = Some(sig);
+                break;
+            }
+            progress.frame_started(f, i, job.height as usize);
             let t = Instant::now();
             let (entry, r) = render_frame(job, &data, f, &o.out, &progress)?;
             let (readings, frame) = (&r.readings, &r.image);
             commit(&o.out, &mut m, f, entry)?;
             summary.rendered += 1;
+            if let Some(s) = stop {
+                s.set_committed(summary.skipped + summary.rendered);
+            }
             summary.render_seconds += frame.stats.seconds;
             let total = t.elapsed().as_secs_f64();
             let msg = eye_message(readings, total);
@@ -243,6 +267,25 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     summary.complete = all.iter().all(|f| m.frames.contains_key(&f));
     summary.seconds = start.elapsed().as_secs_f64();
     Ok(summary)
+}
+
+/// The run's first line: job, scene, frames to do and done, output directory, threads.
+fn startup_line(
+    job: &Job,
+    o: &SequenceOptions,
+    planned: &FrameSet,
+    todo: usize,
+    done: usize,
+) -> String {
+    let threads = rayon::current_num_threads();
+    format!(
+        "eyeadapt sequence: job \"{}\" ({}), scene {}, frames {planned}: {todo} to do, {done} already done, output {}, {threads} thread{}",
+        job.name,
+        job.source,
+        job.scene.source.display(),
+        o.out.display(),
+        if threads == 1 { "" } else { "s" }
+    )
 }
 
 /// The directory's manifest for this run (a new one unless it holds this job's frames) with
@@ -352,7 +395,12 @@ fn render_frame(
     out: &Path,
     progress: &Progress,
 ) -> Result<(FrameEntry, FrameResult), Failure> {
-    let r = job.pipeline(data).run(f, job.time(f), job.view(f));
+    let r = job
+        .pipeline(data)
+        .run_with_progress(f, job.time(f), job.view(f), &|step| match step {
+            FrameStep::Row => progress.row_done(),
+            FrameStep::Estimating => progress.estimating(),
+        });
     let mut files: Vec<String> = Vec::new();
     let spec = WriteSpec {
         layout: Layout::Sequence,
