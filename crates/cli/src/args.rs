@@ -41,9 +41,12 @@ pub enum Command {
 pub struct ReportArgs {
     /// Sequence output directory (holds manifest.json and adaptation.csv).
     pub dir: PathBuf,
-    /// Also encode video/<estimator>.mp4 and video/raw_wcam_eye.mp4 with ffmpeg.
+    /// Also encode video/raw.mp4, video/<estimator>.mp4 and video/raw_wcam_eye.mp4 with ffmpeg.
     #[arg(long)]
     pub video: bool,
+    /// With --video: a strip under every movie naming each frame's number and time.
+    #[arg(long, requires = "video")]
+    pub overlay: bool,
     /// Gaussian σ in seconds of the hf_rms low-pass (estimators.md §7.2).
     #[arg(long, default_value_t = eyeadapt_color::DEFAULT_SIGMA_S)]
     pub sigma_s: f64,

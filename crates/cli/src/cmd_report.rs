@@ -20,6 +20,7 @@ const STAMP: &str = "report.stamp";
 pub fn run(a: ReportArgs) -> Result<(), Failure> {
     let opts = ReportOptions {
         video: a.video,
+        overlay: a.overlay,
         sigma_s: a.sigma_s,
         progress: progress_lines(LogFormat::Plain),
         ..ReportOptions::default()
@@ -81,11 +82,12 @@ pub fn progress_lines(log: LogFormat) -> Option<ReportProgress> {
 fn stamp(dir: &Path, opts: &ReportOptions) -> Option<String> {
     let sum = |name: &str| std::fs::read(dir.join(name)).ok().map(|b| checksum(&b));
     Some(format!(
-        "eyeadapt {}\nmanifest.json {}\nadaptation.csv {}\nvideo {} sigma_s {}\n",
+        "eyeadapt {}\nmanifest.json {}\nadaptation.csv {}\nvideo {} overlay {} sigma_s {}\n",
         env!("CARGO_PKG_VERSION"),
         sum(MANIFEST)?,
         sum(CSV)?,
         opts.video,
+        opts.overlay,
         opts.sigma_s
     ))
 }

@@ -11,7 +11,8 @@
 //!    sequence, reading the raw EXRs (CAT from the logged whites with the job's `cat` and
 //!    `degree`; undefined whites adapt with D65, as the sequencer does);
 //! 4. write `coherence.csv`, `coherence_frames.csv`, `plots/*.svg` and `report.html`;
-//! 5. with `--video`, encode `video/*.mp4` with ffmpeg when it is on PATH.
+//! 5. with `--video`, encode `video/*.mp4` with ffmpeg when it is on PATH (`--overlay`: with
+//!    each frame's number and time).
 //!
 //! The directory is locked like a sequence run, so a report never races a render writing
 //! the same CSV. Running the report twice gives the same files.
@@ -59,6 +60,8 @@ impl std::fmt::Debug for ReportProgress {
 pub struct ReportOptions {
     /// Encode movies with ffmpeg.
     pub video: bool,
+    /// With `video`: a strip under every movie naming each frame's number and time.
+    pub overlay: bool,
     /// σ of the Gaussian in `hf_rms`, seconds.
     pub sigma_s: f64,
     /// The ffmpeg program (looked up on PATH unless it is a path).
@@ -79,6 +82,7 @@ impl Default for ReportOptions {
     fn default() -> Self {
         ReportOptions {
             video: false,
+            overlay: false,
             sigma_s: DEFAULT_SIGMA_S,
             ffmpeg: PathBuf::from("ffmpeg"),
             progress: None,
@@ -173,7 +177,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     // 5. Video.
     let video = if opts.video {
         opts.step("video (ffmpeg)", None);
-        video::videos(dir, &m, &opts.ffmpeg)?
+        video::videos(dir, &m, &opts.ffmpeg, opts.overlay)?
     } else {
         VideoOutcome::NotRequested
     };
