@@ -76,7 +76,7 @@ impl Progress {
             let multi = MultiProgress::with_draw_target(ProgressDrawTarget::stderr());
             let frames = multi.add(ProgressBar::new(total as u64));
             frames.set_style(style(
-                "frames {pos}/{len} [{elapsed_precise}] {wide_bar} ETA {prefix} {msg}",
+                "frames {pos}/{len} [{elapsed_precise}] {bar:30} ETA {prefix} {msg}",
             ));
             frames.set_prefix(hms(None));
             let rows = multi.add(ProgressBar::new(0));
@@ -152,10 +152,10 @@ impl Progress {
         *self.last_line.lock().expect("progress lock") = (self.frame_start, 0);
         match (&self.bars, self.format) {
             (Some(b), _) => {
+                b.rows.set_message("");
                 b.rows.reset();
                 b.rows.set_length(rows as u64);
                 b.rows.set_prefix(format!("frame {frame}"));
-                b.rows.set_message("");
             }
             (None, LogFormat::Plain) => self.line(&format!(
                 "Fra:{frame} rendering ({}/{})",
