@@ -36,9 +36,19 @@ ensure_ffmpeg() {
   (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends ffmpeg) >/dev/null
 }
 
+# tests/recipes.rs runs the README's Flamenco job compiler in node (Debian's nodejs); as root
+# it is installed and required, elsewhere that recipe is skipped without node.
+ensure_node() {
+  command -v node >/dev/null && return 0
+  [[ $(id -u) -eq 0 ]] || return 0
+  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs) >/dev/null
+}
+
 cargo_tests() {
   ensure_ffmpeg
+  ensure_node
   if command -v ffmpeg >/dev/null; then export EYEADAPT_REQUIRE_FFMPEG=1; fi
+  if command -v node >/dev/null; then export EYEADAPT_REQUIRE_NODE=1; fi
   cargo build --release --bins
   cargo test --workspace --release
 }

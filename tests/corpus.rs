@@ -8,7 +8,7 @@
 //! | `obj/` | `NAME.obj` (+ `NAME.mtl`) | `render` of a scene whose only shape is the OBJ |
 //! | `job/` | `NAME.toml` | `eyeadapt sequence CASE` into a directory holding a good sequence |
 //! | `frames/` | `NAME.spec` | `eyeadapt sequence --frames SPEC` into the same directory |
-//! | `merge/` | `NAME/` (a chunk output) | `eyeadapt merge GOOD_CHUNK CASE` into a good merge |
+//! | `merge/` | `NAME/` (a chunk output) | `eyeadapt merge GOOD_CHUNK CASE --frames 0-3` into a good merge |
 //! | `xml/` | `NAME.xml` | `eyeadapt render CASE` (Mitsuba 3 XML) into the good render |
 //! | `gltf/` | `NAME.gltf` | `eyeadapt render CASE` (glTF 2.0) into the good render |
 //! | `report/` | `NAME.csv` / `NAME.manifest` | `eyeadapt report` of a good sequence with that CSV / manifest patch |
@@ -252,7 +252,7 @@ fn every_malformed_input_exits_2_with_its_location_and_leaves_outputs_alone() {
         eyeadapt()
             .arg("merge")
             .args([&chunk0, &chunk1])
-            .arg("--out")
+            .args(["--frames", "0-3", "--out"])
             .arg(&merge_out),
     );
     let chunk1_manifest = std::fs::read_to_string(chunk1.join("manifest.json")).unwrap();
@@ -341,7 +341,7 @@ fn every_malformed_input_exits_2_with_its_location_and_leaves_outputs_alone() {
             None | Some("chunk0 case") => cmd.arg(&chunk0).arg(&dir),
             Some(other) => panic!("{case}: unknown inputs {other:?}"),
         };
-        let (code, err) = run(cmd.arg("--out").arg(&merge_out));
+        let (code, err) = run(cmd.args(["--frames", "0-3", "--out"]).arg(&merge_out));
         outcomes.push(check(&case, code, &err, &x));
     }
 
@@ -482,6 +482,7 @@ fn nan_samples_are_counted_dropped_and_flagged_per_frame() {
         verify: false,
         log_format: eyeadapt_sequencer::progress::LogFormat::Plain,
         plain_progress: true,
+        stop: None,
     };
     let s = run_sequence(&job, &opts).unwrap();
     assert_eq!(s.rendered, 2);

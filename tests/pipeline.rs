@@ -62,6 +62,7 @@ fn render_sequence_and_paper_give_the_same_frame() {
         verify: false,
         log_format: LogFormat::Plain,
         plain_progress: true,
+        stop: None,
     };
     run_sequence(&job, &o).unwrap();
     let rows = std::fs::read_to_string(seq.join("rows/frame_000000.csv")).unwrap();

@@ -258,7 +258,9 @@ fi
 tmp=\$out/merged.tmp.\${SLURM_JOB_ID:-\$\$}
 rm -rf "\$tmp"
 echo "eyeadapt-slurm: merging \$chunks chunks at \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
-"\$exe" merge "\${dirs[@]}" --out "\$tmp"
+# The chunks cover the --frames selection given to submit.sh (else the job's own frames).
+frames=($([[ -z $FRAMES ]] || quoted --frames "$FRAMES"))
+"\$exe" merge "\${dirs[@]}" --out "\$tmp" "\${frames[@]}"
 note="report: \$out/merged/report.html"
 if "\$exe" report --help >/dev/null 2>&1; then
   "\$exe" report "\$tmp"

@@ -26,7 +26,8 @@ pub enum Command {
     Sequence(Box<SequenceArgs>),
     /// Print the frame and chunk counts of a job (shell-evaluable, for farm submitters).
     Plan(Box<SequenceArgs>),
-    /// Join chunk output directories into one sequence (refuses gaps and conflicts).
+    /// Join chunk output directories into one sequence (verifies every file; refuses gaps,
+    /// conflicts and damaged chunks).
     Merge(MergeArgs),
     /// List the built-in scenes (usable as `builtin:NAME` wherever a scene path is).
     Scenes,
@@ -40,9 +41,12 @@ pub enum Command {
 pub struct ReportArgs {
     /// Sequence output directory (holds manifest.json and adaptation.csv).
     pub dir: PathBuf,
-    /// Also encode video/<estimator>.mp4 and video/raw_wcam_eye.mp4 with ffmpeg.
+    /// Also encode video/raw.mp4, video/<estimator>.mp4 and video/raw_wcam_eye.mp4 with ffmpeg.
     #[arg(long)]
     pub video: bool,
+    /// With --video: a strip under every movie naming each frame's number and time.
+    #[arg(long, requires = "video")]
+    pub overlay: bool,
     /// Gaussian σ in seconds of the hf_rms low-pass (estimators.md §7.2).
     #[arg(long, default_value_t = eyeadapt_color::DEFAULT_SIGMA_S)]
     pub sigma_s: f64,
@@ -131,6 +135,10 @@ pub struct MergeArgs {
     /// Merged output directory.
     #[arg(long)]
     pub out: PathBuf,
+    /// Frames the merge must cover (default: the job's own frames, whatever each chunk
+    /// selected); frames of the inputs outside it are left out.
+    #[arg(long)]
+    pub frames: Option<String>,
 }
 
 /// Sampling options shared by `render` and `sequence`.

@@ -1,11 +1,14 @@
 //! `eyeadapt sequence`, `eyeadapt plan` and `eyeadapt merge`.
 use crate::args::{MergeArgs, SequenceArgs};
+use eyeadapt_report::ReportOptions;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::frames::{FrameSet, parse_chunk_index};
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::progress::LogFormat;
 use eyeadapt_sequencer::sequence::{SequenceOptions, plan_chunks, plan_frames, run_sequence};
+use eyeadapt_sequencer::stop::StopRequest;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
     load_job(
@@ -73,19 +76,24 @@ pub fn run(a: SequenceArgs) -> Result<(), Failure> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join(&job.name));
+    let stop = Arc::new(StopRequest::default());
+    let log_format = if a.log_format == "openjd" {
+        LogFormat::Openjd
+    } else {
+        LogFormat::Plain
+    };
     let opts = SequenceOptions {
         out: out.clone(),
         selection: selection(&a, &job)?,
         chunk: chunk_spec(&a)?,
         force: a.force,
         verify: a.verify,
-        log_format: if a.log_format == "openjd" {
-            LogFormat::Openjd
-        } else {
-            LogFormat::Plain
-        },
+        log_format,
         plain_progress: a.no_progress_bar,
+        stop: Some(stop.clone()),
     };
+    let (planned, _) = plan_frames(&job, opts.selection.as_ref(), opts.chunk)?;
+    crate::interrupt::watch(stop.clone(), planned.len())?;
     let s = run_sequence(&job, &opts)?;
     let fph = if s.rendered > 0 {
         s.rendered as f64 / s.seconds * 3600.0
@@ -101,8 +109,23 @@ pub fn run(a: SequenceArgs) -> Result<(), Failure> {
         fph,
         out.display()
     );
+    let committed = crate::interrupt::committed_message(s.skipped + s.rendered, s.planned);
+    if let Some(signal) = s.stopped.or(stop.requested()) {
+        let name = crate::interrupt::signal_name(signal);
+        let message = if s.stopped.is_some() {
+            format!("stopped by {name}: {committed}")
+        } else {
+            format!("stopped by {name} before the report: {committed}")
+        };
+        return Err(Failure::Stopped { signal, message });
+    }
     if s.complete && opts.chunk.is_none() && !a.no_report {
-        crate::cmd_report::write_report(&out, &Default::default())?;
+        stop.set_reporting();
+        let report = ReportOptions {
+            progress: crate::cmd_report::progress_lines(log_format),
+            ..Default::default()
+        };
+        crate::cmd_report::report_unless_current(&out, &report)?;
     }
     Ok(())
 }
@@ -124,10 +147,22 @@ pub fn plan(a: SequenceArgs) -> Result<(), Failure> {
 }
 
 pub fn merge(a: MergeArgs) -> Result<(), Failure> {
-    let s = eyeadapt_sequencer::merge::merge(&a.dirs, &a.out)?;
+    let frames = match &a.frames {
+        Some(spec) => Some(
+            spec.parse::<FrameSet>()
+                .map_err(|e| Failure::Input(format!("--frames: {e}")))?,
+        ),
+        None => None,
+    };
+    let s = eyeadapt_sequencer::merge::merge(&a.dirs, &a.out, frames.as_ref())?;
+    let left_out = match s.left_out {
+        0 => String::new(),
+        n => format!("; {n} frame(s) outside --frames left out"),
+    };
     println!(
-        "merged {} frame(s) from {} director{} ({} identical duplicate(s)) into {}",
+        "merged {} frame(s) ({}) from {} director{} ({} identical duplicate(s){left_out}) into {}",
         s.frames,
+        s.selection,
         s.sources,
         if s.sources == 1 { "y" } else { "ies" },
         s.duplicates,

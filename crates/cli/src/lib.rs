@@ -1,7 +1,8 @@
 //! The `eyeadapt` command line: argument parsing, exit codes and progress display. All work is
 //! done by the library crates; each subcommand lives in its own module.
 //!
-//! Exit codes: 0 done; 2 bad input or usage; 75 transient failure worth a retry; 1 other.
+//! Exit codes: 0 done; 2 bad input or usage; 75 transient failure worth a retry; 130/143
+//! stopped by SIGINT/SIGTERM with every finished frame committed; 1 other.
 
 /// `--estimators/--cat/--degree…` into library settings; the table after a render.
 mod adapt_cli;
@@ -19,6 +20,8 @@ mod cmd_render;
 mod cmd_report;
 /// `eyeadapt sequence`, `plan` and `merge`.
 mod cmd_sequence;
+/// SIGINT/SIGTERM during `sequence`: stop after the frame in flight, or at once.
+mod interrupt;
 
 use clap::Parser;
 use eyeadapt_sequencer::Failure;
@@ -31,6 +34,10 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(f @ Failure::Stopped { .. }) => {
+            eprintln!("eyeadapt: {f}");
+            ExitCode::from(f.exit_code())
+        }
         Err(f) => {
             eprintln!("eyeadapt: error: {f}");
             ExitCode::from(f.exit_code())

@@ -11,7 +11,8 @@
 //!    sequence, reading the raw EXRs (CAT from the logged whites with the job's `cat` and
 //!    `degree`; undefined whites adapt with D65, as the sequencer does);
 //! 4. write `coherence.csv`, `coherence_frames.csv`, `plots/*.svg` and `report.html`;
-//! 5. with `--video`, encode `video/*.mp4` with ffmpeg when it is on PATH.
+//! 5. with `--video`, encode `video/*.mp4` with ffmpeg when it is on PATH (`--overlay`: with
+//!    each frame's number and time).
 //!
 //! The directory is locked like a sequence run, so a report never races a render writing
 //! the same CSV. Running the report twice gives the same files.
@@ -39,24 +40,52 @@ use eyeadapt_sequencer::output::atomic_write_bytes;
 use eyeadapt_sequencer::sequence::lock_dir;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A report step's name and, for steps that count, (done, total).
+pub type StepFn = dyn Fn(&str, Option<(usize, usize)>) + Send + Sync;
+
+/// Told where a report is, step by step.
+#[derive(Clone)]
+pub struct ReportProgress(pub Arc<StepFn>);
+
+impl std::fmt::Debug for ReportProgress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ReportProgress")
+    }
+}
 
 /// What `report` does besides the metrics.
 #[derive(Clone, Debug)]
 pub struct ReportOptions {
     /// Encode movies with ffmpeg.
     pub video: bool,
+    /// With `video`: a strip under every movie naming each frame's number and time.
+    pub overlay: bool,
     /// σ of the Gaussian in `hf_rms`, seconds.
     pub sigma_s: f64,
     /// The ffmpeg program (looked up on PATH unless it is a path).
     pub ffmpeg: PathBuf,
+    /// Where the report is, for progress displays.
+    pub progress: Option<ReportProgress>,
+}
+
+impl ReportOptions {
+    fn step(&self, name: &str, count: Option<(usize, usize)>) {
+        if let Some(p) = &self.progress {
+            (p.0)(name, count);
+        }
+    }
 }
 
 impl Default for ReportOptions {
     fn default() -> Self {
         ReportOptions {
             video: false,
+            overlay: false,
             sigma_s: DEFAULT_SIGMA_S,
             ffmpeg: PathBuf::from("ffmpeg"),
+            progress: None,
         }
     }
 }
@@ -96,6 +125,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     let mut notes = Vec::new();
 
     // 1. The CSV.
+    opts.step("adaptation.csv and temporal filters", None);
     let csv_path = dir.join(CSV);
     let text = std::fs::read_to_string(&csv_path)
         .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
@@ -108,7 +138,8 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     let (all, derived_rows) = filter_and_rewrite(&csv_path, &text, &tab, &base, &presets)?;
 
     // 3. Metrics.
-    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE)?;
+    let on_frame = |done, total| opts.step("image metrics (raw EXRs)", Some((done, total)));
+    let image = series::image_pass(dir, &m, &all, &adaptation, DEFAULT_STRIDE, &on_frame)?;
     let image = match image {
         Ok(p) => Some(p),
         Err(why) => {
@@ -129,6 +160,7 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     }
 
     // 4. Files.
+    opts.step("plots and report.html", None);
     let files = write_files(
         dir,
         &Written {
@@ -144,7 +176,8 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
 
     // 5. Video.
     let video = if opts.video {
-        video::videos(dir, &m, &opts.ffmpeg)?
+        opts.step("video (ffmpeg)", None);
+        video::videos(dir, &m, &opts.ffmpeg, opts.overlay)?
     } else {
         VideoOutcome::NotRequested
     };

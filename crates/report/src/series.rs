@@ -228,6 +228,7 @@ pub fn image_pass(
     series: &[Series],
     adaptation: &AdaptationSettings,
     stride: usize,
+    on_frame: &dyn Fn(usize, usize),
 ) -> Result<Result<ImagePass, String>, Failure> {
     let paths: Vec<(u32, String)> = m
         .frames
@@ -258,7 +259,9 @@ pub fn image_pass(
     let mut pct = LuminancePercentile::new();
     let mut size: Option<(usize, usize)> = None;
     let mut omega: Option<PixelSubset> = None;
-    for (f, rel) in &paths {
+    let steps = 2 * paths.len();
+    for (k, (f, rel)) in paths.iter().enumerate() {
+        on_frame(k + 1, steps);
         let (w, h, px) = read(rel)?;
         match size {
             None => {
@@ -297,6 +300,7 @@ pub fn image_pass(
     let mut accs = vec![ImageMetricsAccumulator::new(); series.len()];
     let mut prev_raw: Option<(u32, eyeadapt_color::LabImage)> = None;
     for (k, (f, rel)) in paths.iter().enumerate() {
+        on_frame(paths.len() + k + 1, steps);
         let px = match cache[k].take() {
             Some(px) => px,
             None => read(rel)?.2,

@@ -1,5 +1,6 @@
-//! `--video`: H.264 movies of the adapted previews with `ffmpeg`, and a labelled side-by-side
-//! `raw | wcam | eye` movie.
+//! `--video`: H.264 movies with `ffmpeg`: the raw previews (`raw.mp4`), each estimator's
+//! adapted previews, and a labelled side-by-side `raw | wcam | eye` movie. With `--overlay`
+//! every movie gets a strip under the picture naming each frame's number and time.
 //!
 //! ffmpeg's `drawtext` needs a font file at run time; instead the labels are drawn here with a
 //! built-in 5×7 bitmap font into a PNG strip that ffmpeg stacks above the three panels, so
@@ -219,9 +220,53 @@ fn encode(
     result
 }
 
-/// Encodes `video/<estimator>.mp4` for every estimator of the manifest and
-/// `video/raw_wcam_eye.mp4`.
-pub fn videos(dir: &Path, m: &Manifest, ffmpeg: &Path) -> Result<VideoOutcome, Failure> {
+/// The `--overlay` strip of every frame, `width` wide, as an image-sequence input: ffmpeg
+/// arguments and the temporary directory holding the PNGs.
+fn overlay_input(dir: &Path, m: &Manifest, width: usize) -> Result<(Vec<String>, PathBuf), String> {
+    let tmp = dir
+        .join("video")
+        .join(format!(".overlay-{width}-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).map_err(|e| format!("cannot create {}: {e}", tmp.display()))?;
+    for (k, (f, e)) in m.frames.iter().enumerate() {
+        let long = format!("frame {f}  {:.3} s", e.time_s);
+        // Narrow movies get the short form rather than clipped text.
+        let text = if 6 * long.len() + 4 <= width {
+            long
+        } else {
+            format!("{f} {:.2}s", e.time_s)
+        };
+        let (px, w, h) = label_strip(&[text.as_str()], width);
+        write_png(&tmp.join(frame_name(k as u32, "png")), &px, w, h, 0.0)
+            .map_err(|e| e.to_string())?;
+    }
+    let args = [
+        "-framerate".to_string(),
+        format!("{}", m.fps),
+        "-start_number".into(),
+        "0".into(),
+        "-i".into(),
+        tmp.join("frame_%06d.png").display().to_string(),
+    ];
+    Ok((args.to_vec(), tmp))
+}
+
+/// The width of the raw previews.
+fn preview_width(dir: &Path, m: &Manifest) -> Result<usize, String> {
+    let first = m.frames.keys().next().copied().unwrap_or(0);
+    let png = dir.join("frames/raw").join(frame_name(first, "png"));
+    image::image_dimensions(&png)
+        .map(|(w, _)| w as usize)
+        .map_err(|e| format!("cannot read {}: {e}", png.display()))
+}
+
+/// Encodes `video/raw.mp4`, `video/<estimator>.mp4` for every estimator of the manifest and
+/// `video/raw_wcam_eye.mp4`; with `overlay`, each with the frame/time strip under it.
+pub fn videos(
+    dir: &Path,
+    m: &Manifest,
+    ffmpeg: &Path,
+    overlay: bool,
+) -> Result<VideoOutcome, Failure> {
     if !ffmpeg_available(ffmpeg) {
         return Ok(VideoOutcome::Skipped(format!(
             "video skipped: {} was not found on PATH (install ffmpeg, e.g. `apt-get install ffmpeg`, and run `eyeadapt report --video {}` again)",
@@ -238,11 +283,35 @@ pub fn videos(dir: &Path, m: &Manifest, ffmpeg: &Path) -> Result<VideoOutcome, F
     let mut files = Vec::new();
     let mut problems = Vec::new();
     let mut temps = Vec::new();
-    for est in &m.estimators {
+    // One strip sequence per width: the single panels', and the side by side's.
+    let strip = |width: usize, temps: &mut Vec<PathBuf>| -> Result<Option<Vec<String>>, String> {
+        if !overlay {
+            return Ok(None);
+        }
+        let (args, tmp) = overlay_input(dir, m, width)?;
+        temps.push(tmp);
+        Ok(Some(args))
+    };
+    let single = preview_width(dir, m).and_then(|w| strip(w, &mut temps));
+    let panels_list = std::iter::once("raw").chain(m.estimators.iter().map(String::as_str));
+    for est in panels_list {
         let out = out_dir.join(format!("{est}.mp4"));
-        let r = png_input(dir, m, est, fps).and_then(|(args, tmp)| {
+        let r = single.clone().and_then(|strip_args| {
+            let (mut args, tmp) = png_input(dir, m, est, fps)?;
             temps.extend(tmp);
-            encode(ffmpeg, args, &["-vf".into(), even.clone()], fps, n, &out)
+            let filter = match strip_args {
+                Some(strip_args) => {
+                    args.extend(strip_args);
+                    vec![
+                        "-filter_complex".into(),
+                        format!("[0:v][1:v]vstack=inputs=2,{even}[out]"),
+                        "-map".into(),
+                        "[out]".into(),
+                    ]
+                }
+                None => vec!["-vf".into(), even.clone()],
+            };
+            encode(ffmpeg, args, &filter, fps, n, &out)
         });
         match r {
             Ok(()) => files.push(out),
@@ -259,11 +328,8 @@ pub fn videos(dir: &Path, m: &Manifest, ffmpeg: &Path) -> Result<VideoOutcome, F
             temps.extend(tmp);
             inputs.extend(args);
         }
-        let first = m.frames.keys().next().copied().unwrap_or(0);
-        let png = dir.join("frames/raw").join(frame_name(first, "png"));
-        let (w, _) = image::image_dimensions(&png)
-            .map_err(|e| format!("cannot read {}: {e}", png.display()))?;
-        let (px, lw, lh) = label_strip(&panels, w as usize);
+        let w = preview_width(dir, m)?;
+        let (px, lw, lh) = label_strip(&panels, w);
         let labels = out_dir.join(format!(".labels-{}.png", std::process::id()));
         write_png(&labels, &px, lw, lh, 0.0).map_err(|e| e.to_string())?;
         temps.push(labels.clone());
@@ -273,9 +339,17 @@ pub fn videos(dir: &Path, m: &Manifest, ffmpeg: &Path) -> Result<VideoOutcome, F
             "-i".into(),
             labels.display().to_string(),
         ]);
-        let filter = format!(
-            "[0:v][1:v][2:v]hstack=inputs=3[row];[3:v][row]vstack=inputs=2:shortest=1,{even}[out]"
-        );
+        let filter = match strip(3 * w, &mut temps)? {
+            Some(strip_args) => {
+                inputs.extend(strip_args);
+                format!(
+                    "[0:v][1:v][2:v]hstack=inputs=3[row];[3:v][row][4:v]vstack=inputs=3:shortest=1,{even}[out]"
+                )
+            }
+            None => format!(
+                "[0:v][1:v][2:v]hstack=inputs=3[row];[3:v][row]vstack=inputs=2:shortest=1,{even}[out]"
+            ),
+        };
         encode(
             ffmpeg,
             inputs,

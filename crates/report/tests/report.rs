@@ -527,8 +527,43 @@ fn video_with_ffmpeg_writes_one_movie_per_estimator_and_the_side_by_side() {
         .iter()
         .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
-    assert_eq!(names, ["eye.mp4", "wcam.mp4", "raw_wcam_eye.mp4"]);
-    for f in &files {
+    assert_eq!(
+        names,
+        ["raw.mp4", "eye.mp4", "wcam.mp4", "raw_wcam_eye.mp4"]
+    );
+    let plain = probe_all(&files, n);
+    assert_eq!(plain[0], (W, H), "raw.mp4 is the raw previews");
+    // --overlay: the same movies, each with a frame/time strip under the picture.
+    let opts = ReportOptions {
+        overlay: true,
+        ..opts
+    };
+    let s = report(dir.path(), &opts).unwrap();
+    let VideoOutcome::Written { files, problems } = s.video else {
+        panic!("{:?}", s.video)
+    };
+    assert!(problems.is_empty(), "{problems:?}");
+    let overlaid = probe_all(&files, n);
+    for ((f, a), b) in files.iter().zip(&plain).zip(&overlaid) {
+        assert_eq!(a.0, b.0, "{}: same width", f.display());
+        assert!(
+            b.1 > a.1,
+            "{}: the strip adds height: {a:?} {b:?}",
+            f.display()
+        );
+    }
+    let temps: Vec<_> = std::fs::read_dir(dir.path().join("video"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(temps.is_empty(), "temporary files left: {temps:?}");
+}
+
+/// (width, height) of each movie, checked to be H.264 yuv420p with `n` frames.
+fn probe_all(files: &[std::path::PathBuf], n: usize) -> Vec<(usize, usize)> {
+    let mut sizes = Vec::new();
+    for f in files {
         let probe = std::process::Command::new("ffprobe")
             .args([
                 "-v",
@@ -560,14 +595,9 @@ fn video_with_ffmpeg_writes_one_movie_per_estimator_and_the_side_by_side() {
                 "label strip on top: {out}"
             );
         } else {
-            assert_eq!((cells[1], cells[2]), ("8", "6"), "{out}");
+            assert_eq!(cells[1], W.to_string(), "{out}");
         }
+        sizes.push((cells[1].parse().unwrap(), cells[2].parse().unwrap()));
     }
-    // No temporary files are left behind.
-    let left: Vec<_> = std::fs::read_dir(dir.path().join("video"))
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .filter(|n| n.to_string_lossy().starts_with('.'))
-        .collect();
-    assert!(left.is_empty(), "{left:?}");
+    sizes
 }

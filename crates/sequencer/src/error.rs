@@ -1,5 +1,6 @@
 //! The failure classes that decide the process exit code (0 done, 2 bad input or usage,
-//! 75 transient — worth a retry, 1 anything else).
+//! 75 transient — worth a retry, 128 + N stopped by signal N after committing what was done,
+//! 1 anything else).
 use std::fmt;
 use std::io;
 use std::path::Path;
@@ -12,6 +13,9 @@ pub enum Failure {
     Transient(String),
     /// Anything else: exit 1.
     Other(String),
+    /// Stopped by signal `signal` (SIGINT, SIGTERM) with everything done so far committed:
+    /// exit 128 + signal, as a shell reports a process killed by it.
+    Stopped { signal: i32, message: String },
 }
 
 impl Failure {
@@ -20,6 +24,7 @@ impl Failure {
             Failure::Input(_) => 2,
             Failure::Transient(_) => 75,
             Failure::Other(_) => 1,
+            Failure::Stopped { signal, .. } => (128 + signal).clamp(129, 255) as u8,
         }
     }
 
@@ -53,6 +58,7 @@ impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Failure::Input(m) | Failure::Other(m) => write!(f, "{m}"),
+            Failure::Stopped { message, .. } => write!(f, "{message}"),
             Failure::Transient(m) => write!(f, "{m} (transient: retrying may succeed)"),
         }
     }

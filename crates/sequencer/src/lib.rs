@@ -35,6 +35,8 @@ pub mod sequence;
 pub mod settings;
 /// `eyeadapt render`: one still.
 pub mod still;
+/// [`stop::StopRequest`]: a signal asks a running sequence to stop after the frame in flight.
+pub mod stop;
 
 pub use crate::error::Failure;
 pub use crate::estimator::Estimator;

@@ -13,6 +13,11 @@ use std::path::Path;
 pub const MANIFEST: &str = "manifest.json";
 pub const CSV: &str = "adaptation.csv";
 
+/// The manifest format this version writes. Format 1 recorded in `job_frames` the run's
+/// selection (the job's frames narrowed by `--frames`); format 2 records there the job's own
+/// frames, whatever each chunk selected, so that chunks chosen in any way merge. Both read.
+pub const FORMAT: u32 = 2;
+
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct FileEntry {
@@ -42,7 +47,8 @@ pub struct Manifest {
     pub job_hash: String,
     /// Frames this directory is meant to hold (the selection or chunk), as a frame spec.
     pub planned: String,
-    /// Every frame of the job's selection (for merge's gap check), as a frame spec.
+    /// The job's own frames (its `frames` key, else the whole camera path), as a frame spec:
+    /// what `merge` must cover unless told `--frames`. (Format 1: the run's selection.)
     pub job_frames: String,
     pub estimators: Vec<String>,
     pub fps: f64,
@@ -81,6 +87,29 @@ pub fn checksum(bytes: &[u8]) -> String {
     crate::job::hex(&Sha256::digest(bytes)[..16])
 }
 
+/// Why the file `fe` names under `dir` is not what the manifest says (missing, another size,
+/// another checksum), or `None` when it is.
+pub fn file_problem(dir: &Path, fe: &FileEntry) -> Option<String> {
+    let p = dir.join(&fe.path);
+    let bytes = match std::fs::read(&p) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Some("is missing".into());
+        }
+        Err(e) => return Some(format!("cannot be read: {e}")),
+    };
+    if bytes.len() as u64 != fe.bytes {
+        return Some(format!(
+            "has {} bytes, the manifest says {}",
+            bytes.len(),
+            fe.bytes
+        ));
+    }
+    let sum = checksum(&bytes);
+    (sum != fe.sha256_128)
+        .then(|| format!("has checksum {sum}, the manifest says {}", fe.sha256_128))
+}
+
 pub fn file_entry(dir: &Path, rel: &str) -> Result<FileEntry, Failure> {
     let p = dir.join(rel);
     let bytes = std::fs::read(&p).map_err(|e| Failure::io("cannot read back", &p, &e))?;
@@ -102,6 +131,13 @@ impl Manifest {
                         p.display()
                     ))
                 })?;
+                if !(1..=FORMAT).contains(&m.format) {
+                    return Err(Failure::Input(format!(
+                        "{}: manifest format {} is not one this eyeadapt reads (1 to {FORMAT})",
+                        p.display(),
+                        m.format
+                    )));
+                }
                 check_paths(&m, &p)?;
                 Ok(Some(m))
             }
@@ -124,12 +160,10 @@ impl Manifest {
             return false;
         };
         e.files.iter().all(|fe| {
-            let p = dir.join(&fe.path);
             if verify {
-                std::fs::read(&p)
-                    .is_ok_and(|b| b.len() as u64 == fe.bytes && checksum(&b) == fe.sha256_128)
+                file_problem(dir, fe).is_none()
             } else {
-                std::fs::metadata(&p).is_ok_and(|m| m.len() == fe.bytes)
+                std::fs::metadata(dir.join(&fe.path)).is_ok_and(|m| m.len() == fe.bytes)
             }
         })
     }

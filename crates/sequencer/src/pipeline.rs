@@ -11,7 +11,7 @@ use crate::estimator::Estimator;
 use crate::output::{write_exr, write_png};
 use eyeadapt_color::Estimate;
 use eyeadapt_scene::Scene;
-use eyeadapt_tracer::{Frame, PathSettings, RenderSettings, SceneData, View, render};
+use eyeadapt_tracer::{Frame, PathSettings, RenderSettings, SceneData, View, render_with_progress};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -115,6 +115,15 @@ pub struct Pipeline<'a> {
     pub adaptation: &'a AdaptationSettings,
 }
 
+/// Where a frame's work is, for progress displays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameStep {
+    /// One more row of pixels is rendered.
+    Row,
+    /// The image is done; the estimators (the eye sensor traces rays) run.
+    Estimating,
+}
+
 /// One frame, rendered and estimated.
 pub struct FrameResult {
     pub number: u32,
@@ -127,11 +136,24 @@ pub struct FrameResult {
 impl Pipeline<'_> {
     /// Renders frame `number` (its sample keys) seen from `view` and runs every estimator.
     pub fn run(&self, number: u32, time: f64, view: View) -> FrameResult {
+        self.run_with_progress(number, time, view, &|_| {})
+    }
+
+    /// [`Pipeline::run`], telling `step` (from any thread) about each finished row and when
+    /// the estimators start.
+    pub fn run_with_progress(
+        &self,
+        number: u32,
+        time: f64,
+        view: View,
+        step: &(dyn Fn(FrameStep) + Sync),
+    ) -> FrameResult {
         let settings = RenderSettings {
             frame: number,
             ..self.settings
         };
-        let image = render(self.data, &view, &settings);
+        let image = render_with_progress(self.data, &view, &settings, &|| step(FrameStep::Row));
+        step(FrameStep::Estimating);
         let readings = estimate_all(
             self.estimators,
             self.config,

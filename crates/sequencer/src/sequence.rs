@@ -16,13 +16,17 @@ use crate::frames::FrameSet;
 use crate::job::Job;
 use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry};
 use crate::output::atomic_write_bytes;
-use crate::pipeline::{FrameResult, FrameScenes, Layout, WriteSpec, frame_name, write_images};
+use crate::pipeline::{
+    FrameResult, FrameScenes, FrameStep, Layout, WriteSpec, frame_name, write_images,
+};
 use crate::progress::{LogFormat, Progress};
 use crate::settings::RunSettings;
+use crate::stop::StopRequest;
 use eyeadapt_tracer::SceneData;
 use std::fs::OpenOptions;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 #[derive(Clone, Debug)]
@@ -37,6 +41,8 @@ pub struct SequenceOptions {
     pub verify: bool,
     pub log_format: LogFormat,
     pub plain_progress: bool,
+    /// Checked before each frame: a signal handler's request to stop.
+    pub stop: Option<Arc<StopRequest>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -48,6 +54,8 @@ pub struct SequenceSummary {
     pub render_seconds: f64,
     /// Every frame of the job's selection is committed in this directory.
     pub complete: bool,
+    /// The signal that stopped the run before all its frames were done.
+    pub stopped: Option<i32>,
 }
 
 /// (frames this run is responsible for, the job's whole selection): the job's frames
@@ -147,26 +155,39 @@ pub fn csv_from_rows(dir: &Path, m: &Manifest) -> Result<String, Failure> {
     Ok(csv)
 }
 
-/// Rewrites adaptation.csv from the row files unless it already holds exactly that.
+/// Rewrites adaptation.csv from the row files unless it already holds exactly that, or that
+/// followed by rows a report derived from it (estimator names with `+`, such as
+/// `eye+fairchild`; only `report` writes them), so that a rerun which renders nothing leaves
+/// a finished directory's CSV, and so its report, as they are.
 pub fn sync_csv(dir: &Path, m: &Manifest) -> Result<bool, Failure> {
     let want = csv_from_rows(dir, m)?;
     let p = dir.join(CSV);
-    if std::fs::read(&p).is_ok_and(|have| have == want.as_bytes()) {
+    let derived_tail = |rest: &[u8]| {
+        rest.is_empty()
+            || std::str::from_utf8(rest).is_ok_and(|t| {
+                t.ends_with('\n')
+                    && t.lines()
+                        .all(|l| l.split(',').nth(2).is_some_and(|e| e.contains('+')))
+            })
+    };
+    if std::fs::read(&p)
+        .is_ok_and(|have| have.strip_prefix(want.as_bytes()).is_some_and(derived_tail))
+    {
         return Ok(false);
     }
     atomic_write_bytes(&p, want.as_bytes())?;
     Ok(true)
 }
 
-fn new_manifest(job: &Job, planned: &FrameSet, all: &FrameSet) -> Manifest {
+fn new_manifest(job: &Job, planned: &FrameSet) -> Manifest {
     Manifest {
-        format: 1,
+        format: crate::manifest::FORMAT,
         tool: format!("eyeadapt {}", env!("CARGO_PKG_VERSION")),
         job_name: job.name.clone(),
         job_source: job.source.clone(),
         job_hash: job.hash.clone(),
         planned: planned.to_string(),
-        job_frames: all.to_string(),
+        job_frames: job.frames.to_string(),
         estimators: job.estimators.iter().map(|s| s.to_string()).collect(),
         fps: job.path.fps(),
         settings: RunSettings::of_job(job),
@@ -188,7 +209,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     crate::still::prepare_out_dir(&o.out)?;
     let _lock = lock_dir(&o.out)?;
     remove_stale_temps(&o.out)?;
-    let (mut m, damaged) = open_manifest(job, o, &planned, &all)?;
+    let (mut m, damaged) = open_manifest(job, o, &planned)?;
     m.save(&o.out)?;
     sync_csv(&o.out, &m)?;
 
@@ -202,6 +223,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         ..Default::default()
     };
     let mut progress = Progress::new(todo.len(), o.log_format, o.plain_progress);
+    progress.note(&startup_line(job, o, &planned, todo.len(), summary.skipped));
     if !damaged.is_empty() {
         progress.note(&format!(
             "re-rendering {} frame(s) whose files were missing or damaged: {}",
@@ -209,17 +231,18 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             damaged
         ));
     }
-    if summary.skipped > 0 {
-        progress.note(&format!(
-            "resuming: {} of {} frame(s) already complete",
-            summary.skipped,
-            planned.len()
-        ));
+    let stop = o.stop.as_deref();
+    if let Some(s) = stop {
+        s.set_committed(summary.skipped);
     }
     if !todo.is_empty() {
         let scenes = FrameScenes::new(&job.scene);
         for (i, &f) in todo.iter().enumerate() {
-            progress.frame_started(f, i);
+            if let Some(sig) = stop.and_then(StopRequest::requested) {
+                summary.stopped = Some(sig);
+                break;
+            }
+            progress.frame_started(f, i, job.height as usize);
             let t = Instant::now();
             let (entry, r) = scenes.at(job.time(f), |data| {
                 render_frame(job, data, f, &o.out, &progress)
@@ -227,6 +250,9 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
             let (readings, frame) = (&r.readings, &r.image);
             commit(&o.out, &mut m, f, entry)?;
             summary.rendered += 1;
+            if let Some(s) = stop {
+                s.set_committed(summary.skipped + summary.rendered);
+            }
             summary.render_seconds += frame.stats.seconds;
             let total = t.elapsed().as_secs_f64();
             let msg = eye_message(readings, total);
@@ -247,6 +273,25 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     Ok(summary)
 }
 
+/// The run's first line: job, scene, frames to do and done, output directory, threads.
+fn startup_line(
+    job: &Job,
+    o: &SequenceOptions,
+    planned: &FrameSet,
+    todo: usize,
+    done: usize,
+) -> String {
+    let threads = rayon::current_num_threads();
+    format!(
+        "eyeadapt sequence: job \"{}\" ({}), scene {}, frames {planned}: {todo} to do, {done} already done, output {}, {threads} thread{}",
+        job.name,
+        job.source,
+        job.scene.source.display(),
+        o.out.display(),
+        if threads == 1 { "" } else { "s" }
+    )
+}
+
 /// The directory's manifest for this run (a new one unless it holds this job's frames) with
 /// the frames whose files are gone or damaged forgotten (they will be rendered again), and
 /// those frames.
@@ -254,12 +299,12 @@ fn open_manifest(
     job: &Job,
     o: &SequenceOptions,
     planned: &FrameSet,
-    all: &FrameSet,
 ) -> Result<(Manifest, FrameSet), Failure> {
     let mut m = match Manifest::load(&o.out)? {
         Some(m) if m.job_hash == job.hash => Manifest {
+            format: crate::manifest::FORMAT,
             planned: planned.to_string(),
-            job_frames: all.to_string(),
+            job_frames: job.frames.to_string(),
             ..m
         },
         Some(m) if !o.force => {
@@ -274,7 +319,7 @@ fn open_manifest(
                 crate::manifest::short_hash(&job.hash)
             )));
         }
-        _ => new_manifest(job, planned, all),
+        _ => new_manifest(job, planned),
     };
     // Forget frames whose files are gone or damaged; they will be rendered again.
     let damaged = FrameSet::from_frames(
@@ -354,7 +399,12 @@ fn render_frame(
     out: &Path,
     progress: &Progress,
 ) -> Result<(FrameEntry, FrameResult), Failure> {
-    let r = job.pipeline(data).run(f, job.time(f), job.view(f));
+    let r = job
+        .pipeline(data)
+        .run_with_progress(f, job.time(f), job.view(f), &|step| match step {
+            FrameStep::Row => progress.row_done(),
+            FrameStep::Estimating => progress.estimating(),
+        });
     let mut files: Vec<String> = Vec::new();
     let spec = WriteSpec {
         layout: Layout::Sequence,

@@ -137,6 +137,17 @@ fn f3(v: DVec3) -> [f32; 3] {
 
 /// Renders one frame of `scene` from `view`.
 pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Frame {
+    render_with_progress(scene, view, settings, &|| {})
+}
+
+/// [`render`], calling `row_done` (from any worker thread) each time a row of pixels is
+/// finished, so that callers can show progress inside a frame. The pixels do not depend on it.
+pub fn render_with_progress(
+    scene: &SceneData,
+    view: &View,
+    settings: &RenderSettings,
+    row_done: &(dyn Fn() + Sync),
+) -> Frame {
     let start = Instant::now();
     let (w, h) = (view.width as usize, view.height as usize);
     let basis = view.basis();
@@ -195,6 +206,7 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
     let render_row = |y: usize| -> (Vec<PixelAcc>, Vec<(DVec3, f64)>) {
         let mut splat = vec![(DVec3::ZERO, 0.0); if splats { band * w } else { 0 }];
         let row = (0..w).map(|x| render_pixel(x, y, &mut splat)).collect();
+        row_done();
         (row, splat)
     };
     // Rows in blocks, so that at most a block's splat buffers exist at once (with the box

@@ -36,7 +36,7 @@ pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
     sample_cardioid,
 };
-pub use crate::film::{Frame, RenderSettings, RenderStats, View, render};
+pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
 pub use crate::geometry::{Geometry, Hit, RayScratch};
 pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
 pub use crate::interaction::SurfaceInteraction;
