@@ -87,8 +87,8 @@ fn job_format_example_parses() {
         .unwrap();
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(out.contains("EYEADAPT_FRAMES=72"), "{out}");
-    assert!(out.contains("EYEADAPT_CHUNKS=8"), "{out}");
+    assert!(out.contains("EYEADAPT_FRAMES='72'"), "{out}");
+    assert!(out.contains("EYEADAPT_CHUNKS='8'"), "{out}");
 }
 
 #[test]
@@ -156,7 +156,7 @@ fn texture_and_instance_example_loads_and_renders() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// `eyeadapt plan JOB`'s `KEY=VALUE` lines.
+/// `eyeadapt plan JOB`'s `KEY='VALUE'` lines.
 fn plan(job: &std::path::Path) -> std::collections::HashMap<String, String> {
     let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
         .args(["plan", job.to_str().unwrap()])
@@ -166,7 +166,7 @@ fn plan(job: &std::path::Path) -> std::collections::HashMap<String, String> {
     String::from_utf8_lossy(&o.stdout)
         .lines()
         .filter_map(|l| l.split_once('='))
-        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .map(|(k, v)| (k.to_string(), v.trim_matches('\'').to_string()))
         .collect()
 }
 

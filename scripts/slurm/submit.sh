@@ -175,12 +175,15 @@ run_plan() {
     die "'$EXE ${args[*]}' failed with exit $rc"
   fi
   FRAMES_N="" CHUNKS="" FIRST="" LAST=""
+  local v
   while IFS= read -r line; do
+    # Values are single-quoted (EYEADAPT_FRAMES='97'); the numbers hold no quote inside.
+    v=${line#*=} v=${v#\'} v=${v%\'}
     case $line in
-      EYEADAPT_FRAMES=*) FRAMES_N=${line#*=} ;;
-      EYEADAPT_CHUNKS=*) CHUNKS=${line#*=} ;;
-      EYEADAPT_FIRST=*) FIRST=${line#*=} ;;
-      EYEADAPT_LAST=*) LAST=${line#*=} ;;
+      EYEADAPT_FRAMES=*) FRAMES_N=$v ;;
+      EYEADAPT_CHUNKS=*) CHUNKS=$v ;;
+      EYEADAPT_FIRST=*) FIRST=$v ;;
+      EYEADAPT_LAST=*) LAST=$v ;;
     esac
   done <<<"$out"
   [[ $CHUNKS =~ ^[0-9]+$ && $FRAMES_N =~ ^[0-9]+$ ]] \

@@ -24,8 +24,9 @@ pub enum Command {
     Bench(BenchArgs),
     /// Render a camera-path sequence (the overnight job); with no JOB, the built-in demo.
     Sequence(Box<SequenceArgs>),
-    /// Print the frame and chunk counts of a job (shell-evaluable, for farm submitters).
-    Plan(Box<SequenceArgs>),
+    /// Print the frame and chunk counts of a job for farm submitters: quoted shell assignments
+    /// (safe to `eval` in sh and bash), or JSON with --format json.
+    Plan(Box<PlanArgs>),
     /// Join chunk output directories into one sequence (verifies every file; refuses gaps,
     /// conflicts and damaged chunks).
     Merge(MergeArgs),
@@ -125,6 +126,15 @@ pub struct SequenceArgs {
     /// Exactly this many eye-sensor paths per frame (default: adaptive, 4096-16384).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=67_108_864))]
     pub eye_samples: Option<u32>,
+}
+
+#[derive(Args, Debug)]
+pub struct PlanArgs {
+    #[command(flatten)]
+    pub seq: SequenceArgs,
+    /// Output: `sh` (EYEADAPT_NAME='value' lines for `eval`) or `json` (one object).
+    #[arg(long, default_value = "sh", value_parser = ["sh", "json"])]
+    pub format: String,
 }
 
 #[derive(Args, Debug)]

@@ -1,16 +1,16 @@
-//! `eyeadapt sequence`, `eyeadapt plan` and `eyeadapt merge`.
+//! `eyeadapt sequence` and `eyeadapt merge` (and the job and frame selection `plan` shares).
 use crate::args::{MergeArgs, SequenceArgs};
 use eyeadapt_report::ReportOptions;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::frames::{FrameSet, parse_chunk_index};
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::progress::LogFormat;
-use eyeadapt_sequencer::sequence::{SequenceOptions, plan_chunks, plan_frames, run_sequence};
+use eyeadapt_sequencer::sequence::{SequenceOptions, plan_frames, run_sequence};
 use eyeadapt_sequencer::stop::StopRequest;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
+pub(crate) fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
     load_job(
         a.job.as_deref(),
         &JobOverrides {
@@ -20,7 +20,7 @@ fn job_of(a: &SequenceArgs) -> Result<Job, Failure> {
     )
 }
 
-fn selection(a: &SequenceArgs, job: &Job) -> Result<Option<FrameSet>, Failure> {
+pub(crate) fn selection(a: &SequenceArgs, job: &Job) -> Result<Option<FrameSet>, Failure> {
     if let Some(spec) = &a.frames {
         return spec
             .parse::<FrameSet>()
@@ -127,22 +127,6 @@ pub fn run(a: SequenceArgs) -> Result<(), Failure> {
         };
         crate::cmd_report::report_unless_current(&out, &report)?;
     }
-    Ok(())
-}
-
-pub fn plan(a: SequenceArgs) -> Result<(), Failure> {
-    let job = job_of(&a)?;
-    let (_, all) = plan_frames(&job, selection(&a, &job)?.as_ref(), None)?;
-    let chunks = match a.chunk_size {
-        Some(n) => plan_chunks(&all, n as usize)?,
-        None => 1,
-    };
-    println!("EYEADAPT_JOB_NAME={}", job.name);
-    println!("EYEADAPT_FRAMES={}", all.len());
-    println!("EYEADAPT_CHUNKS={chunks}");
-    println!("EYEADAPT_FIRST={}", all.first().unwrap_or_default());
-    println!("EYEADAPT_LAST={}", all.last().unwrap_or_default());
-    println!("EYEADAPT_JOB_HASH={}", job.hash);
     Ok(())
 }
 

@@ -14,11 +14,13 @@ mod cmd_bench;
 mod cmd_bench_bvh;
 /// `eyeadapt paper`.
 mod cmd_paper;
+/// `eyeadapt plan`.
+mod cmd_plan;
 /// `eyeadapt render`.
 mod cmd_render;
 /// `eyeadapt report`.
 mod cmd_report;
-/// `eyeadapt sequence`, `plan` and `merge`.
+/// `eyeadapt sequence` and `merge`.
 mod cmd_sequence;
 /// SIGINT/SIGTERM during `sequence`: stop after the frame in flight, or at once.
 mod interrupt;
@@ -57,7 +59,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Bench(a) if a.bvh_triangles.is_some() => cmd_bench_bvh::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Sequence(a) => cmd_sequence::run(*a),
-        Command::Plan(a) => cmd_sequence::plan(*a),
+        Command::Plan(a) => cmd_plan::run(*a),
         Command::Merge(a) => cmd_sequence::merge(a),
         Command::Report(a) => cmd_report::run(a),
         Command::Paper(a) => cmd_paper::run(a),

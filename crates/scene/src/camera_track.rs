@@ -65,16 +65,12 @@ impl CameraTrack {
                 message,
             }],
         };
-        let meta = std::fs::metadata(path)
+        let file = crate::open_input(path)
             .map_err(|e| err(0, format!("cannot read camera track: {e}")))?;
-        if !meta.is_file() {
-            return Err(err(0, "camera track is not a regular file".into()));
-        }
         let mut reader = csv::ReaderBuilder::new()
             .comment(Some(b'#'))
             .trim(csv::Trim::All)
-            .from_path(path)
-            .map_err(|e| err(0, format!("cannot read camera track: {e}")))?;
+            .from_reader(file);
         let header_line = reader.position().line();
         let header = reader
             .headers()

@@ -21,15 +21,10 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 
 /// Decodes `path`; the message names the file and what is wrong with it.
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
-    // A FIFO or device would block or never end: only regular files are opened.
-    if !path.is_file() {
-        return Err(format!(
-            "cannot read image {}: it does not exist or is not a regular file",
-            path.display()
-        ));
-    }
-    let reader = ImageReader::open(path)
-        .and_then(|r| r.with_guessed_format())
+    let file = crate::open_input(path)
+        .map_err(|e| format!("cannot read image {}: {e}", path.display()))?;
+    let reader = ImageReader::new(std::io::BufReader::new(file))
+        .with_guessed_format()
         .map_err(|e| format!("cannot read texture file {}: {e}", path.display()))?;
     use image::ImageFormat as F;
     let known = |f: F| matches!(f, F::Png | F::Jpeg | F::OpenExr | F::Hdr | F::Bmp | F::Tga);

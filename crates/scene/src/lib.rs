@@ -24,6 +24,7 @@ mod diagnostic;
 mod fingerprint;
 pub mod gltf;
 mod image_file;
+mod input_file;
 mod instance;
 mod light;
 mod material;
@@ -46,6 +47,7 @@ pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, Path
 pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
 pub use crate::image_file::{ImageCache, load_image, srgb_to_linear};
+pub use crate::input_file::{check_input, is_bad_input, open_input, read_input, read_input_text};
 pub use crate::instance::Instance;
 pub use crate::light::Light;
 pub use crate::material::{Bsdf, Material, MaterialId, Param};

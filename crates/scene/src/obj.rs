@@ -23,25 +23,34 @@ pub(crate) fn load_obj(
     path: &Path,
     override_material: Option<MaterialId>,
 ) -> Result<LoadedObj, String> {
-    if !path.is_file() {
-        return Err(format!(
-            "OBJ file {} does not exist or is not a file",
-            path.display()
-        ));
-    }
-    let file = std::fs::File::open(path)
-        .map_err(|e| format!("cannot read OBJ {}: {e}", path.display()))?;
+    let file =
+        crate::open_input(path).map_err(|e| format!("cannot read OBJ {}: {e}", path.display()))?;
     // The text is only read again to point at the offending line of a failed load.
-    let text = || std::fs::read(path).unwrap_or_default();
+    let text = || crate::read_input(path).unwrap_or_default();
     // `mtllib` names resolve next to the OBJ, as tobj::load_obj resolves them.
     let dir = path.parent().unwrap_or(Path::new("."));
     let note = RefCell::new(None);
+    // A missing MTL costs only its materials (a warning); one that cannot be read (a FIFO, a
+    // device, no permission) is an error.
+    let unreadable = RefCell::new(None);
     let mut reader = std::io::BufReader::new(file);
     let loaded = tobj::load_obj_buf(&mut reader, &tobj::GPU_LOAD_OPTIONS, |mtl| {
         let mtl_path = dir.join(mtl);
-        let bytes = std::fs::read(&mtl_path).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        let bytes = crate::read_input(&mtl_path).map_err(|e| {
+            if e.kind() != std::io::ErrorKind::NotFound {
+                *unreadable.borrow_mut() = Some(format!(
+                    "OBJ {}: cannot read material library {}: {e}",
+                    path.display(),
+                    mtl_path.display()
+                ));
+            }
+            tobj::LoadError::OpenFileFailed
+        })?;
         load_mtl_checked(&bytes, &mtl_path, &note)
     });
+    if let Some(e) = unreadable.take() {
+        return Err(e);
+    }
     let (models, mtls) = loaded.map_err(|e| {
         format!(
             "cannot load OBJ {}: {e}",

@@ -54,6 +54,19 @@ impl Failure {
     }
 }
 
+impl Failure {
+    /// An error reading the input file `path` ([`eyeadapt_scene::open_input`]): bad input
+    /// (exit 2) when the path is wrong (missing, a FIFO or device, a loop of symbolic links,
+    /// unreadable), else classified as [`Failure::io`].
+    pub fn input_io(what: &str, path: &Path, e: &io::Error) -> Failure {
+        if eyeadapt_scene::is_bad_input(e) {
+            Failure::Input(format!("{}: {what}: {e}", path.display()))
+        } else {
+            Failure::io(what, path, e)
+        }
+    }
+}
+
 impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -52,7 +52,7 @@ pub const DEMO_JOB: &str = include_str!("../../../configs/demo.toml");
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct JobFile {
-    name: Option<String>,
+    name: Option<Spanned<String>>,
     scene: Spanned<String>,
     seed: Option<Spanned<i64>>,
     frames: Option<Spanned<String>>,
@@ -161,14 +161,9 @@ impl Job {
 pub fn load_job(path: Option<&Path>, o: &JobOverrides) -> Result<Job, Failure> {
     let (text, source, dir) = match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| match e.kind() {
-                std::io::ErrorKind::NotFound
-                | std::io::ErrorKind::IsADirectory
-                | std::io::ErrorKind::InvalidData => {
-                    Failure::Input(format!("{}: cannot read job file: {e}", p.display()))
-                }
-                _ => Failure::io("cannot read job file", p, &e),
-            })?;
+            // Only a regular file is read: a FIFO would block, /dev/zero never ends.
+            let text = eyeadapt_scene::read_input_text(p)
+                .map_err(|e| Failure::input_io("cannot read job file", p, &e))?;
             (
                 text,
                 p.display().to_string(),
@@ -279,11 +274,10 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     if !p.errors.is_empty() {
         return Err(Failure::Input(p.errors.join("\n")));
     }
-    let name = raw.name.clone().unwrap_or_else(|| {
-        Path::new(source)
-            .file_stem()
-            .map_or("job".into(), |s| s.to_string_lossy().into_owned())
-    });
+    let name = job_name(raw.name.as_ref(), source, &mut p);
+    if !p.errors.is_empty() {
+        return Err(Failure::Input(p.errors.join("\n")));
+    }
     let mut job = Job {
         name,
         source: source.to_string(),
@@ -305,6 +299,52 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
     };
     job.hash = job_hash(&job);
     Ok(job)
+}
+
+/// The job's `name` (else the job file's stem), which names its default output directory
+/// `out/<name>`: a plain relative identifier, so that it can never point elsewhere.
+fn job_name(given: Option<&Spanned<String>>, source: &str, p: &mut Problems) -> String {
+    let (name, at) = match given {
+        Some(n) => (n.get_ref().clone(), n.span().start),
+        None => (
+            Path::new(source)
+                .file_stem()
+                .map_or("job".into(), |s| s.to_string_lossy().into_owned()),
+            0,
+        ),
+    };
+    if let Err(why) = check_name(&name) {
+        let whose = if given.is_some() {
+            "name"
+        } else {
+            "the job's name (its file name, as no `name` is given)"
+        };
+        p.at(
+            at,
+            format!(
+                "{whose} {name:?} {why}; it names the output directory out/<name>, so it must \
+                 be one plain file name"
+            ),
+        );
+    }
+    name
+}
+
+/// Why `name` is not a plain relative identifier, if it is not.
+fn check_name(name: &str) -> Result<(), &'static str> {
+    if name.is_empty() {
+        Err("is empty")
+    } else if name == "." || name == ".." {
+        Err("is a directory reference")
+    } else if name.contains(['/', '\\']) {
+        Err("contains a path separator")
+    } else if name.chars().any(char::is_control) {
+        Err("contains a control character")
+    } else if name.len() > 200 {
+        Err("is longer than 200 bytes")
+    } else {
+        Ok(())
+    }
 }
 
 /// Where the job's `scene` is: `builtin:NAME` as it is, a file relative to the job file.

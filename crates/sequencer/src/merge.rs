@@ -82,7 +82,7 @@ pub fn merge(
 
     crate::still::prepare_out_dir(out)?;
     let _lock = lock_dir(out)?;
-    crate::sequence::remove_stale_temps(out)?;
+    crate::output::remove_stale_temps(out)?;
     if let Some(existing) = Manifest::load(out)?
         && existing.job_hash != m0.job_hash
     {

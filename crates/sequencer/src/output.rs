@@ -28,6 +28,118 @@ pub fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
 }
 
+/// Deletes the temporary files (`.NAME.tmp-PID`) a killed run left in the output directory
+/// `dir`, and nothing else: only in the directories this program writes (`dir` itself, `rows/`,
+/// each directory of `frames/`, `plots/`, `video/`; none of them followed through a symbolic
+/// link), and only names this program gives its temporaries there (`.frame_000012.png.tmp-77`,
+/// `.manifest.json.tmp-77`…). A user's `.notes.tmp-1`, or anything in a directory of their
+/// own, stays. Only called while holding the directory lock, so no live writer owns any of
+/// them. Returns how many were removed.
+pub fn remove_stale_temps(dir: &Path) -> Result<usize, Failure> {
+    let mut dirs = vec![
+        (dir.to_path_buf(), Owned::Top),
+        (dir.join("rows"), Owned::Rows),
+        (dir.join("plots"), Owned::Plots),
+        (dir.join("video"), Owned::Video),
+    ];
+    for frames in real_subdirs(&dir.join("frames")) {
+        dirs.push((frames, Owned::Frames));
+    }
+    let mut removed = 0;
+    for (d, owned) in dirs {
+        if !is_real_dir(&d) {
+            continue;
+        }
+        let Ok(entries) = fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name();
+            let is_file = e.file_type().is_ok_and(|t| t.is_file());
+            if is_file && name.to_str().is_some_and(|n| owned.is_our_temp(n)) {
+                let p = e.path();
+                fs::remove_file(&p)
+                    .map_err(|e| Failure::io("cannot remove stale temporary file", &p, &e))?;
+                removed += 1;
+            }
+        }
+    }
+    Ok(removed)
+}
+
+/// The directories of an output directory this program writes into, by what it writes there.
+#[derive(Clone, Copy)]
+enum Owned {
+    /// The manifest, the CSVs and the report page.
+    Top,
+    /// `rows/frame_NNNNNN.csv`.
+    Rows,
+    /// `frames/<raw or estimator>/frame_NNNNNN.{exr,png}`.
+    Frames,
+    /// `plots/*.svg`.
+    Plots,
+    /// `video/*.mp4`.
+    Video,
+}
+
+impl Owned {
+    /// True for `.FILE.tmp-PID` where FILE is a name this program writes in such a directory.
+    fn is_our_temp(self, name: &str) -> bool {
+        let Some((file, pid)) = name
+            .strip_prefix('.')
+            .and_then(|rest| rest.rsplit_once(".tmp-"))
+        else {
+            return false;
+        };
+        if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+            return false;
+        }
+        let frame_file = |exts: &[&str]| {
+            file.strip_prefix("frame_")
+                .and_then(|rest| rest.split_once('.'))
+                .is_some_and(|(n, ext)| {
+                    !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) && exts.contains(&ext)
+                })
+        };
+        match self {
+            Owned::Top => TOP_FILES.contains(&file),
+            Owned::Rows => frame_file(&["csv"]),
+            Owned::Frames => frame_file(&["exr", "png"]),
+            Owned::Plots => file.len() > 4 && file.ends_with(".svg"),
+            Owned::Video => file.len() > 4 && file.ends_with(".mp4"),
+        }
+    }
+}
+
+/// Files this program writes at the top of an output directory.
+const TOP_FILES: [&str; 5] = [
+    crate::manifest::MANIFEST,
+    crate::manifest::CSV,
+    "coherence.csv",
+    "coherence_frames.csv",
+    "report.html",
+];
+
+/// A directory itself, not a symbolic link to one.
+fn is_real_dir(p: &Path) -> bool {
+    fs::symlink_metadata(p).is_ok_and(|m| m.is_dir())
+}
+
+/// The subdirectories of `dir` that are directories themselves (not symbolic links).
+fn real_subdirs(dir: &Path) -> Vec<PathBuf> {
+    if !is_real_dir(dir) {
+        return Vec::new();
+    }
+    let Ok(entries) = fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    entries
+        .flatten()
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+        .map(|e| e.path())
+        .collect()
+}
+
 /// Writes `path` atomically: `write` fills a temporary file in the same directory, which is
 /// flushed to disk and renamed over `path`. A crash leaves either the old file or the new one.
 pub fn atomic_write(
@@ -117,13 +229,22 @@ pub fn write_exr(path: &Path, frame: &Frame) -> Result<(), Failure> {
 
 /// Reads a raw frame written by [`write_exr`] (missing AOV channels come back as zeros).
 pub fn read_exr(path: &Path) -> Result<Frame, Failure> {
-    let image = read_first_flat_layer_from_file(path).map_err(|e| match e {
-        exr::error::Error::Io(io) => Failure::io("cannot read EXR", path, &io),
-        other => Failure::Input(format!(
-            "{}: not a readable EXR frame: {other}",
-            path.display()
-        )),
-    })?;
+    let file = eyeadapt_scene::open_input(path)
+        .map_err(|e| Failure::input_io("cannot read EXR frame", path, &e))?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::BufReader::new(file))
+        .map_err(|e| match e {
+            exr::error::Error::Io(io) => Failure::io("cannot read EXR", path, &io),
+            other => Failure::Input(format!(
+                "{}: not a readable EXR frame: {other}",
+                path.display()
+            )),
+        })?;
     let layer = image.layer_data;
     let (w, h) = (layer.size.width(), layer.size.height());
     let get = |name: &str| -> Vec<f32> {
@@ -239,6 +360,50 @@ mod tests {
         assert_eq!(back, frame);
         // No temporary file is left behind.
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn stale_temp_cleanup_removes_only_our_own_temporaries() {
+        let d = tempfile::tempdir().unwrap();
+        let dir = d.path();
+        let ours = [
+            ".manifest.json.tmp-12",
+            ".adaptation.csv.tmp-3",
+            "rows/.frame_000004.csv.tmp-99",
+            "frames/raw/.frame_000004.exr.tmp-99",
+            "frames/eye/.frame_000004.png.tmp-99",
+            "plots/.chromaticity.svg.tmp-5",
+        ];
+        let theirs = [
+            ".notes.tmp-1",
+            ".manifest.json.tmp-",
+            ".manifest.json.tmp-12x",
+            "mine/.manifest.json.tmp-12",
+            "rows/.frame_000004.png.tmp-99",
+            "rows/.frame_x.csv.tmp-99",
+            "frames/.frame_000004.png.tmp-99",
+            "frames/raw/deeper/.frame_000004.png.tmp-99",
+            "frames/raw/frame_000004.exr",
+        ];
+        for rel in ours.iter().chain(&theirs) {
+            let p = dir.join(rel);
+            fs::create_dir_all(p.parent().unwrap()).unwrap();
+            fs::write(&p, "x").unwrap();
+        }
+        // A symbolic link out of the directory is not followed.
+        let elsewhere = tempfile::tempdir().unwrap();
+        let victim = elsewhere.path().join(".frame_000001.png.tmp-1");
+        fs::write(&victim, "x").unwrap();
+        #[cfg(unix)]
+        std::os::unix::fs::symlink(elsewhere.path(), dir.join("frames/linked")).unwrap();
+        assert_eq!(remove_stale_temps(dir).unwrap(), ours.len());
+        for rel in ours {
+            assert!(!dir.join(rel).exists(), "{rel} stayed");
+        }
+        for rel in theirs {
+            assert!(dir.join(rel).exists(), "{rel} was deleted");
+        }
+        assert!(victim.exists(), "followed a symbolic link");
     }
 
     #[test]

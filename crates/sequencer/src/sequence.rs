@@ -118,30 +118,6 @@ pub fn lock_dir(dir: &Path) -> Result<DirLock, Failure> {
     }
 }
 
-/// Deletes temporary files (`.NAME.tmp-PID`) left by a killed run. Only called while holding
-/// the directory lock, so no live writer owns any of them.
-pub fn remove_stale_temps(dir: &Path) -> Result<usize, Failure> {
-    let mut removed = 0;
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        for e in entries.flatten() {
-            let p = e.path();
-            let name = e.file_name().to_string_lossy().into_owned();
-            if e.file_type().is_ok_and(|t| t.is_dir()) {
-                stack.push(p);
-            } else if name.starts_with('.') && name.contains(".tmp-") {
-                std::fs::remove_file(&p)
-                    .map_err(|e| Failure::io("cannot remove stale temporary file", &p, &e))?;
-                removed += 1;
-            }
-        }
-    }
-    Ok(removed)
-}
-
 /// The full CSV text of a directory's committed frames, in frame order.
 pub fn csv_from_rows(dir: &Path, m: &Manifest) -> Result<String, Failure> {
     let mut csv = String::from(CSV_HEADER);
@@ -208,7 +184,7 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
     )?;
     crate::still::prepare_out_dir(&o.out)?;
     let _lock = lock_dir(&o.out)?;
-    remove_stale_temps(&o.out)?;
+    crate::output::remove_stale_temps(&o.out)?;
     let (mut m, damaged) = open_manifest(job, o, &planned)?;
     m.save(&o.out)?;
     sync_csv(&o.out, &m)?;

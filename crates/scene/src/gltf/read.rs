@@ -42,19 +42,15 @@ pub fn fail(d: Diagnostic) -> SceneError {
     }
 }
 
-/// Refuses anything that is not a regular file of sane size before opening it: reading a
+/// Refuses anything that is not a regular file of sane size before it is read: reading a
 /// FIFO would block forever, a device never ends.
 pub fn check_regular(path: &Path, what: &str) -> Result<(), String> {
-    let meta = std::fs::metadata(path)
+    let len = crate::check_input(path)
         .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
-    if !meta.is_file() {
-        return Err(format!("{what} {} is not a regular file", path.display()));
-    }
-    if meta.len() > MAX_FILE_BYTES {
+    if len > MAX_FILE_BYTES {
         return Err(format!(
-            "{what} {} is {} bytes, more than the {MAX_FILE_BYTES} this reader accepts",
-            path.display(),
-            meta.len()
+            "{what} {} is {len} bytes, more than the {MAX_FILE_BYTES} this reader accepts",
+            path.display()
         ));
     }
     Ok(())
@@ -97,7 +93,7 @@ pub fn json_pointer(path: &str) -> String {
 pub fn open(path: &Path) -> Result<GltfFile, SceneError> {
     let whole = |m: String| fail(whole_file(path, m));
     check_regular(path, "glTF file").map_err(whole)?;
-    let bytes = std::fs::read(path)
+    let bytes = crate::read_input(path)
         .map_err(|e| whole(format!("cannot read glTF file {}: {e}", path.display())))?;
     let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| document_error(path, e))?;
     let base = path.parent().unwrap_or(Path::new("."));

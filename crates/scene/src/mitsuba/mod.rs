@@ -29,7 +29,7 @@ pub use build::vertical_fov as mitsuba_vertical_fov;
 /// Loads a Mitsuba 3 XML scene. `overrides` set `$name` parameters and take precedence over
 /// the file's `<default name=… value=…>`s (like `mitsuba -D name=value`).
 pub fn load_mitsuba(path: &Path, overrides: &[(&str, &str)]) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+    let text = crate::read_input_text(path).map_err(|e| SceneError {
         diagnostics: vec![Diagnostic {
             severity: Severity::Error,
             file: path.to_path_buf(),

@@ -108,7 +108,7 @@ impl Body<'_> {
 
 pub(crate) fn load_ply(path: &Path) -> Result<PlyMesh, String> {
     let bytes =
-        std::fs::read(path).map_err(|e| format!("cannot read PLY {}: {e}", path.display()))?;
+        crate::read_input(path).map_err(|e| format!("cannot read PLY {}: {e}", path.display()))?;
     parse_ply(&bytes).map_err(|e| format!("PLY {}: {e}", path.display()))
 }
 

@@ -24,7 +24,7 @@ pub(crate) struct SerializedMesh {
 }
 
 pub(crate) fn load_serialized(path: &Path, shape_index: usize) -> Result<SerializedMesh, String> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::read_input(path)
         .map_err(|e| format!("cannot read serialized mesh {}: {e}", path.display()))?;
     parse_serialized(&bytes, shape_index)
         .map_err(|e| format!("serialized mesh {}: {e}", path.display()))

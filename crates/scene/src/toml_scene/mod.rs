@@ -20,7 +20,7 @@ use toml::Spanned;
 
 /// Loads and validates a TOML scene file. OBJ paths are relative to the file's directory.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+    let text = crate::read_input_text(path).map_err(|e| SceneError {
         diagnostics: vec![Diagnostic {
             severity: Severity::Error,
             file: path.to_path_buf(),

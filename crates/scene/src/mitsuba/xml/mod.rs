@@ -350,7 +350,7 @@ impl Parser {
             );
             return;
         }
-        let text = match std::fs::read(&path) {
+        let text = match crate::read_input(&path) {
             Ok(bytes) => match String::from_utf8(bytes) {
                 Ok(t) => t,
                 Err(_) => {

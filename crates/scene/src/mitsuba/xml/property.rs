@@ -229,7 +229,7 @@ impl Parser {
             (None, Some(_)) => {
                 let file = self.required(el, "filename")?;
                 let path = self.sources.resolve(&file);
-                match std::fs::read_to_string(&path) {
+                match crate::read_input_text(&path) {
                     Ok(t)
                         if path
                             .extension()
