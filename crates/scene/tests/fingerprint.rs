@@ -1,9 +1,9 @@
 //! The scene fingerprint changes when any single field of any type changes (a resumed run must
 //! never mix outputs of different scenes), and only then.
 use eyeadapt_scene::{
-    Bitmap, Bsdf, Camera, CameraPath, FilterType, Image, Instance, Keyframe, Light, Material,
-    MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb, Scene, Texture,
-    TextureId, Transform, WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, Distribution, FilterType, Image, Instance, Keyframe, Light,
+    Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb,
+    Scene, Texture, TextureId, Transform, WrapMode,
 };
 use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
@@ -37,6 +37,7 @@ fn full() -> Scene {
             Material {
                 name: "c".into(),
                 bsdf: Bsdf::Conductor {
+                    distribution: Distribution::Ggx,
                     alpha: Param::Const(0.2),
                     eta: Rgb::splat(0.2),
                     k: Rgb::splat(3.0),
@@ -47,6 +48,7 @@ fn full() -> Scene {
             Material {
                 name: "p".into(),
                 bsdf: Bsdf::Plastic {
+                    distribution: Distribution::Ggx,
                     reflectance: Param::Const(Rgb::splat(0.5)),
                     alpha: Param::Texture(TextureId(1)),
                     ior: 1.5,

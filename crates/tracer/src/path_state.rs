@@ -7,7 +7,7 @@
 //! about the current surface lives in [`Vertex`]; its random numbers come in
 //! [`VertexSamples`]. A batched or wavefront executor can therefore run one step over many
 //! paths at a time and get the same result as [`crate::trace`].
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::RayScratch;
 use crate::integrator::{
     Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic, visible,
@@ -49,6 +49,9 @@ pub struct Vertex {
     frame: Frame,
     wo_l: Vec3A,
     bsdf: Bsdf,
+    /// The probability that the surface scatters (masks); otherwise light passes straight
+    /// through, a delta event.
+    opacity: f32,
     /// Ray origins just off the surface on the viewer's side and behind it.
     p_front: Vec3A,
     p_back: Vec3A,
@@ -59,6 +62,7 @@ pub struct VertexSamples {
     pick: f32,
     lobe: f32,
     pub rr: f32,
+    mask: f32,
     bsdf: [f32; 2],
     light_next: [f32; 2],
 }
@@ -69,13 +73,14 @@ impl VertexSamples {
         let pick = s.next_1d();
         let lobe = s.next_1d();
         let rr = s.next_1d();
-        let _ = s.next_1d();
+        let mask = s.next_1d();
         let bsdf = s.next_2d();
         let light_next = s.next_2d();
         VertexSamples {
             pick,
             lobe,
             rr,
+            mask,
             bsdf,
             light_next,
         }
@@ -86,15 +91,17 @@ impl Vertex {
     /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there.
     #[inline]
     pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A) -> Vertex {
-        // Shading frame on the viewer's side; every surface reflects on both sides.
-        let ng = if si.ng.dot(wo) > 0.0 { si.ng } else { -si.ng };
+        // Shading frame on the viewer's side; the BSDF knows which side that is.
+        let front = si.ng.dot(wo) > 0.0;
+        let ng = if front { si.ng } else { -si.ng };
         let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
         let frame = Frame::new(ns);
         Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
-            bsdf: scene.materials.bsdf(si),
+            bsdf: scene.materials.bsdf(si, front),
+            opacity: scene.materials.opacity(si),
             p_front: offset(si.p, ng),
             p_back: offset(si.p, -ng),
         }
@@ -213,14 +220,16 @@ impl PathState {
             return;
         }
         let wi_l = v.frame.to_local(ls.wi);
-        let f = v.bsdf.eval(v.wo_l, wi_l);
+        // Shadow rays treat every surface as opaque, as Mitsuba's path integrator does; light
+        // through glass or a mask's holes arrives by BSDF sampling.
+        let f = v.bsdf.eval(v.wo_l, wi_l) * v.opacity;
         if f.max_element() <= 0.0 || !visible(scene, scratch, from, ls.wi, ls.dist) {
             return;
         }
         let w = if ls.delta {
             1.0
         } else {
-            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l))
+            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l) * v.opacity)
         };
         let c = self.beta * f * ls.li * (wi_l.z.abs() * w / ls.pdf);
         if self.depth == 0 {
@@ -236,7 +245,22 @@ impl PathState {
     /// the path ends (no sample, or one on the wrong side of the geometric surface).
     #[inline]
     pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
-        let Some(bs) = v.bsdf.sample(v.wo_l, u.lobe, u.bsdf) else {
+        let bs = if u.mask >= v.opacity {
+            // Through a mask's hole: straight on, unweighted.
+            Some(BsdfSample {
+                wi: -v.wo_l,
+                f: Vec3A::ONE / v.wo_l.z.max(1e-12),
+                pdf: 1.0,
+                weight: Vec3A::ONE,
+                delta: true,
+            })
+        } else {
+            v.bsdf.sample(v.wo_l, u.lobe, u.bsdf).map(|b| BsdfSample {
+                pdf: b.pdf * v.opacity,
+                ..b
+            })
+        };
+        let Some(bs) = bs else {
             return false;
         };
         let wi = v.frame.to_world(bs.wi);

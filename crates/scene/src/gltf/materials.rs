@@ -14,7 +14,7 @@
 //! A metallic value strictly between 0 and 1 and a base colour texture are reported as
 //! warnings naming the material's JSON pointer, since those parts are not yet rendered.
 use super::read::at;
-use crate::{Bsdf, Diagnostic, Material, Param, Rgb, Severity};
+use crate::{Bsdf, Diagnostic, Distribution, Material, Param, Rgb, Severity};
 use std::path::Path;
 
 /// The eyeadapt material of glTF material `m` (its warnings pushed to `warnings`).
@@ -55,6 +55,7 @@ pub fn material(file: &Path, m: &gltf::Material, warnings: &mut Vec<Diagnostic>)
     let bsdf = if metallic >= 0.5 {
         Bsdf::Conductor {
             alpha: Param::Const(alpha),
+            distribution: Distribution::Ggx,
             eta: Rgb::ZERO,
             k: Rgb::ONE,
             specular_reflectance: Param::Const(base),
@@ -67,6 +68,7 @@ pub fn material(file: &Path, m: &gltf::Material, warnings: &mut Vec<Diagnostic>)
         Bsdf::Plastic {
             reflectance: Param::Const(base),
             alpha: Param::Const(alpha),
+            distribution: Distribution::Ggx,
             ior: 1.5,
         }
     };
