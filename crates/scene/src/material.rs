@@ -129,20 +129,6 @@ pub enum Bsdf {
     },
 }
 
-impl Bsdf {
-    /// True for BSDFs that send light through the surface.
-    pub fn transmits(&self) -> bool {
-        match self {
-            Bsdf::Diffuse { .. } | Bsdf::Conductor { .. } | Bsdf::Plastic { .. } => false,
-            Bsdf::Dielectric { .. }
-            | Bsdf::ThinDielectric { .. }
-            | Bsdf::RoughDielectric { .. }
-            | Bsdf::Mask { .. } => true,
-            Bsdf::OneSided(b) => b.transmits(),
-        }
-    }
-}
-
 /// A named material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
