@@ -6,6 +6,7 @@
 //! time 0 is the scene camera.
 use super::camera::AnimatedCamera;
 use super::read::{GltfFile, at, fail};
+use super::textures::Textures;
 use super::{geometry, lights, materials};
 use crate::{Camera, Diagnostic, MaterialId, MeshId, Scene, SceneError, Severity, Transform};
 use glam::DMat4;
@@ -25,6 +26,7 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
     let mut warnings: Vec<Diagnostic> = Vec::new();
     let mut meshes: HashMap<(usize, usize), Option<MeshId>> = HashMap::new();
     let mut mats: HashMap<Option<usize>, MaterialId> = HashMap::new();
+    let mut textures = Textures::new(file);
     let roots: Vec<gltf::Node> = match file
         .document
         .default_scene()
@@ -72,11 +74,20 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
             };
             let Some(id) = id else { continue };
             let gm = prim.material();
-            let mat = *mats.entry(gm.index()).or_insert_with(|| {
-                let m = materials::material(&file.path, &gm, &mut warnings);
-                s.materials.push(m);
-                MaterialId(s.materials.len() as u32 - 1)
-            });
+            let mat = match mats.get(&gm.index()) {
+                Some(id) => *id,
+                None => {
+                    let m = materials::material(file, &gm, &mut textures, &mut s, &mut warnings)
+                        .unwrap_or_else(|e| {
+                            errors.push(e);
+                            crate::Material::error()
+                        });
+                    s.materials.push(m);
+                    let id = MaterialId(s.materials.len() as u32 - 1);
+                    mats.insert(gm.index(), id);
+                    id
+                }
+            };
             s.add_instance(
                 id,
                 Some(mat),

@@ -14,6 +14,7 @@ mod load_nodes;
 mod materials;
 mod nodes;
 mod read;
+mod textures;
 
 pub use camera::AnimatedCamera;
 pub use lights::LUMENS_PER_WATT;
