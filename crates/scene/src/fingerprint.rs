@@ -8,8 +8,9 @@
 //! make a resume refuse, never mix scenes.
 use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
-    Bitmap, Bsdf, Camera, CameraPath, FilterType, Image, Instance, Keyframe, Light, Material, Mesh,
-    Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform, WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, Distribution, FilterType, Image, Instance, Keyframe, Light,
+    Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform,
+    WrapMode,
 };
 use crate::{Interpolation, Track};
 use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -317,19 +318,38 @@ impl Feed for Material {
         } = self;
         name.feed(h);
         emission.feed(h);
-        match bsdf {
+        bsdf.feed(h);
+    }
+}
+
+impl Feed for Distribution {
+    /// GGX feeds nothing, so the fingerprints of scenes from before the distribution existed
+    /// (all GGX) stay the same.
+    fn feed(&self, h: &mut Sha256) {
+        match self {
+            Distribution::Ggx => {}
+            Distribution::Beckmann => tag(h, 1),
+        }
+    }
+}
+
+impl Feed for Bsdf {
+    fn feed(&self, h: &mut Sha256) {
+        match self {
             Bsdf::Diffuse { reflectance } => {
                 tag(h, 0);
                 reflectance.feed(h);
             }
             Bsdf::Conductor {
                 alpha,
+                distribution,
                 eta,
                 k,
                 specular_reflectance,
             } => {
                 tag(h, 1);
                 alpha.feed(h);
+                distribution.feed(h);
                 eta.feed(h);
                 k.feed(h);
                 specular_reflectance.feed(h);
@@ -337,12 +357,57 @@ impl Feed for Material {
             Bsdf::Plastic {
                 reflectance,
                 alpha,
+                distribution,
                 ior,
             } => {
                 tag(h, 2);
                 reflectance.feed(h);
                 alpha.feed(h);
+                distribution.feed(h);
                 ior.feed(h);
+            }
+            Bsdf::Dielectric {
+                eta,
+                specular_reflectance,
+                specular_transmittance,
+            } => {
+                tag(h, 3);
+                eta.feed(h);
+                specular_reflectance.feed(h);
+                specular_transmittance.feed(h);
+            }
+            Bsdf::ThinDielectric {
+                eta,
+                specular_reflectance,
+                specular_transmittance,
+            } => {
+                tag(h, 4);
+                eta.feed(h);
+                specular_reflectance.feed(h);
+                specular_transmittance.feed(h);
+            }
+            Bsdf::RoughDielectric {
+                alpha,
+                distribution,
+                eta,
+                specular_reflectance,
+                specular_transmittance,
+            } => {
+                tag(h, 5);
+                alpha.feed(h);
+                distribution.feed(h);
+                eta.feed(h);
+                specular_reflectance.feed(h);
+                specular_transmittance.feed(h);
+            }
+            Bsdf::OneSided(b) => {
+                tag(h, 6);
+                b.feed(h);
+            }
+            Bsdf::Mask { opacity, bsdf } => {
+                tag(h, 7);
+                opacity.feed(h);
+                bsdf.feed(h);
             }
         }
     }

@@ -50,7 +50,7 @@ pub use crate::image_file::{ImageCache, load_image, srgb_to_linear};
 pub use crate::input_file::{check_input, is_bad_input, open_input, read_input, read_input_text};
 pub use crate::instance::Instance;
 pub use crate::light::Light;
-pub use crate::material::{Bsdf, Material, MaterialId, Param};
+pub use crate::material::{Bsdf, Distribution, Material, MaterialId, Param};
 pub use crate::mesh::{Mesh, MeshId};
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};

@@ -58,6 +58,16 @@ impl From<f32> for Param<f32> {
     }
 }
 
+/// The microfacet distribution of a rough surface (Mitsuba's `distribution`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Distribution {
+    /// Trowbridge–Reitz (GGX); sampled by its visible normals.
+    #[default]
+    Ggx,
+    /// Beckmann–Spizzichino; sampled by the full distribution D(m)·cos θm.
+    Beckmann,
+}
+
 /// Index into [`crate::Scene::materials`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct MaterialId(pub u32);
@@ -67,20 +77,55 @@ pub struct MaterialId(pub u32);
 pub enum Bsdf {
     /// Lambertian reflector.
     Diffuse { reflectance: Param<Rgb> },
-    /// GGX conductor with a per-channel complex IOR; `alpha == 0` is a perfect mirror.
+    /// Microfacet conductor with a per-channel complex IOR; `alpha == 0` is a perfect mirror.
     Conductor {
         alpha: Param<f32>,
+        distribution: Distribution,
         eta: Rgb,
         k: Rgb,
         specular_reflectance: Param<Rgb>,
     },
-    /// GGX dielectric coating (`ior`) over a Lambertian base (`reflectance`), after Mitsuba's
-    /// `roughplastic` with `nonlinear = false`.
+    /// Microfacet dielectric coating (`ior`) over a Lambertian base (`reflectance`), after
+    /// Mitsuba's `roughplastic` with `nonlinear = false`.
     Plastic {
         reflectance: Param<Rgb>,
         /// Clamped to at least 0.01 where it is evaluated.
         alpha: Param<f32>,
+        distribution: Distribution,
         ior: f32,
+    },
+    /// A smooth dielectric interface (glass, water): Fresnel reflection and refraction.
+    /// `eta` is the interior's IOR over the exterior's (> 0, ≠ 1 for any refraction); the
+    /// front side (the geometric normal's) is the exterior.
+    Dielectric {
+        eta: f32,
+        specular_reflectance: Rgb,
+        specular_transmittance: Rgb,
+    },
+    /// A thin dielectric sheet (a window pane): the two interfaces' inter-reflections summed,
+    /// light leaves undeflected.
+    ThinDielectric {
+        eta: f32,
+        specular_reflectance: Rgb,
+        specular_transmittance: Rgb,
+    },
+    /// A rough dielectric interface (Walter et al. 2007), `eta` as for [`Bsdf::Dielectric`].
+    RoughDielectric {
+        alpha: Param<f32>,
+        distribution: Distribution,
+        eta: f32,
+        specular_reflectance: Rgb,
+        specular_transmittance: Rgb,
+    },
+    /// A reflecting BSDF that is black seen from the back side (Mitsuba's BSDFs outside a
+    /// `twosided`); every other BSDF reflects alike on both sides. Transmitting BSDFs are never
+    /// wrapped.
+    OneSided(Box<Bsdf>),
+    /// A cut-out: the inner BSDF where `opacity` is 1, nothing (light passes straight through)
+    /// where it is 0, a stochastic mix in between (Mitsuba's `mask`).
+    Mask {
+        opacity: Param<f32>,
+        bsdf: Box<Bsdf>,
     },
 }
 

@@ -2,9 +2,9 @@
 //! never mix outputs of different scenes), and only then.
 use eyeadapt_scene::gltf::{Node, NodeTracks, NodeTree, Rest, SceneAnimation};
 use eyeadapt_scene::{
-    Bitmap, Bsdf, Camera, CameraPath, FilterType, Image, Instance, Keyframe, Light, Material,
-    MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb, Scene, Texture,
-    TextureId, Transform, WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, Distribution, FilterType, Image, Instance, Keyframe, Light,
+    Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb,
+    Scene, Texture, TextureId, Transform, WrapMode,
 };
 use eyeadapt_scene::{Interpolation, Track};
 use glam::{Affine2, DMat4, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -39,6 +39,7 @@ fn full() -> Scene {
             Material {
                 name: "c".into(),
                 bsdf: Bsdf::Conductor {
+                    distribution: Distribution::Ggx,
                     alpha: Param::Const(0.2),
                     eta: Rgb::splat(0.2),
                     k: Rgb::splat(3.0),
@@ -49,6 +50,7 @@ fn full() -> Scene {
             Material {
                 name: "p".into(),
                 bsdf: Bsdf::Plastic {
+                    distribution: Distribution::Ggx,
                     reflectance: Param::Const(Rgb::splat(0.5)),
                     alpha: Param::Texture(TextureId(1)),
                     ior: 1.5,

@@ -1,8 +1,8 @@
 //! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
 //! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
 use eyeadapt_scene::{
-    Bsdf, FilterType, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError, Texture,
-    TextureId, WrapMode, load_mitsuba, load_mitsuba_str, load_scene, load_scene_file,
+    Bsdf, Distribution, FilterType, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError,
+    Texture, TextureId, WrapMode, load_mitsuba, load_mitsuba_str, load_scene, load_scene_file,
     mitsuba_vertical_fov,
 };
 use glam::Vec3;
@@ -15,6 +15,14 @@ fn repo() -> PathBuf {
 
 fn xml(body: &str) -> String {
     format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n")
+}
+
+/// The BSDF inside a one-sided wrapper (Mitsuba's BSDFs outside `twosided` are one-sided).
+fn one_sided(b: &Bsdf) -> Bsdf {
+    match b {
+        Bsdf::OneSided(inner) => (**inner).clone(),
+        other => panic!("not one-sided: {other:?}"),
+    }
 }
 
 fn load(body: &str) -> Result<Scene, SceneError> {
@@ -169,7 +177,7 @@ fn parameters_come_from_defaults_and_caller_overrides() {
     assert!(d.message.contains("`$missing`"), "{e}");
     let s = load_mitsuba_str(&text, Path::new("p.xml"), &[("missing", "3")]).unwrap();
     assert_eq!(
-        s.materials[0].bsdf,
+        one_sided(&s.materials[0].bsdf),
         Bsdf::Diffuse {
             reflectance: Vec3::new(0.25, 0.25, 0.5).into()
         }
@@ -318,17 +326,18 @@ fn supported_plugins_load() {
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
     );
     assert!(((lo + hi) / 2.0).distance(Vec3::new(1.0, 2.0, 3.0)) < 1e-4);
-    match &s.material(s.instances[1].material).bsdf {
+    // Inside a `twosided`: not wrapped.
+    match s.material(s.instances[1].material).bsdf.clone() {
         Bsdf::Conductor { alpha, eta, .. } => {
-            assert_eq!(*alpha, 0.2.into());
+            assert_eq!(alpha, 0.2.into());
             assert!((eta.x - 0.143).abs() < 1e-3, "Mitsuba's Au: {eta}");
         }
         b => panic!("{b:?}"),
     }
-    match &s.material(s.instances[2].material).bsdf {
+    match one_sided(&s.material(s.instances[2].material).bsdf) {
         Bsdf::Plastic { ior, alpha, .. } => {
             assert!((ior - 1.5046 / 1.000277).abs() < 1e-5);
-            assert_eq!(*alpha, 0.01.into());
+            assert_eq!(alpha, 0.01.into());
         }
         b => panic!("{b:?}"),
     }
@@ -339,7 +348,7 @@ fn supported_plugins_load() {
     let lamp = s.material(s.instances[3].material);
     assert_eq!(lamp.emission, Vec3::new(1.0, 2.0, 3.0));
     assert_eq!(
-        lamp.bsdf,
+        one_sided(&lamp.bsdf),
         Bsdf::Diffuse {
             reflectance: Vec3::splat(0.5).into()
         },
@@ -371,9 +380,8 @@ fn approximations_are_warnings() {
     )
     .unwrap();
     let all: Vec<String> = s.warnings.iter().map(|w| w.to_string()).collect();
-    assert_eq!(all.len(), 2, "{all:#?}");
+    assert_eq!(all.len(), 1, "{all:#?}");
     assert!(all.iter().any(|w| w.contains("anisotropic")));
-    assert!(all.iter().any(|w| w.contains("Beckmann")));
     // No <rfilter>: Mitsuba's default Gaussian.
     assert_eq!(s.render.filter, Some(PixelFilter::GAUSSIAN));
 }
@@ -454,17 +462,6 @@ fn a_missing_texture_file_is_reported_at_its_filename() {
 }
 
 #[test]
-fn dielectric_is_reported_at_its_bsdf() {
-    expect_errors(
-        "glass-on-table.xml",
-        &[(
-            "<bsdf type=\"dielectric\"",
-            &["<bsdf type=\"dielectric\" id=\"glass\">", "unsupported"],
-        )],
-    );
-}
-
-#[test]
 fn envmap_is_reported_at_its_emitter() {
     expect_errors(
         "sky-envmap.xml",
@@ -476,14 +473,81 @@ fn envmap_is_reported_at_its_emitter() {
 }
 
 #[test]
-fn included_files_load_and_thindielectric_is_reported() {
-    expect_errors(
-        "window-include.xml",
-        &[(
-            "<bsdf type=\"thindielectric\"",
-            &["<bsdf type=\"thindielectric\" id=\"window-glass\">"],
-        )],
+fn dielectrics_load_with_mitsubas_iors_and_included_files() {
+    let glass = load_scene_file(&repo().join("scenes/mitsuba-glass/glass-on-table.xml")).unwrap();
+    let by_name = |s: &Scene, n: &str| {
+        s.materials
+            .iter()
+            .find(|m| m.name == n)
+            .unwrap()
+            .bsdf
+            .clone()
+    };
+    match by_name(&glass, "glass") {
+        Bsdf::Dielectric { eta, .. } => assert!((eta - (1.5046 / 1.000277) as f32).abs() < 1e-6),
+        b => panic!("{b:?}"),
+    }
+    assert!(matches!(by_name(&glass, "table"), Bsdf::OneSided(_)));
+    // The window's materials come from an included file.
+    let window = load_scene_file(&repo().join("scenes/mitsuba-glass/window-include.xml")).unwrap();
+    match by_name(&window, "window-glass") {
+        Bsdf::ThinDielectric { eta, .. } => assert!((eta - 1.5 / 1.000277) < 1e-6),
+        b => panic!("{b:?}"),
+    }
+    let rough = load(
+        "<shape type=\"cube\"><bsdf type=\"roughdielectric\"><float name=\"alpha\" value=\"0.2\"/><string name=\"int_ior\" value=\"water\"/><float name=\"ext_ior\" value=\"1\"/></bsdf></shape><emitter type=\"constant\"/>",
+    )
+    .unwrap();
+    assert_eq!(
+        rough.materials[0].bsdf,
+        Bsdf::RoughDielectric {
+            alpha: 0.2.into(),
+            distribution: Distribution::Beckmann,
+            eta: 1.333,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE,
+        },
+        "Mitsuba's default distribution is Beckmann"
     );
+}
+
+#[test]
+fn bad_iors_and_masks_are_errors_at_their_elements() {
+    for (bsdf, words) in [
+        (
+            "<bsdf type=\"dielectric\"><float name=\"int_ior\" value=\"0\"/></bsdf>",
+            &["int_ior = 0 must be positive"][..],
+        ),
+        (
+            "<bsdf type=\"thindielectric\"><float name=\"ext_ior\" value=\"-1\"/></bsdf>",
+            &["ext_ior = -1 must be positive"],
+        ),
+        (
+            "<bsdf type=\"roughdielectric\"><string name=\"int_ior\" value=\"glass\"/></bsdf>",
+            &["unknown IOR name \"glass\"", "bk7"],
+        ),
+        (
+            "<bsdf type=\"roughdielectric\"><float name=\"int_ior\" value=\"1.2\"/><float name=\"ext_ior\" value=\"1.2\"/></bsdf>",
+            &["must differ"],
+        ),
+        (
+            "<bsdf type=\"mask\"><float name=\"opacity\" value=\"1.5\"/><bsdf type=\"diffuse\"/></bsdf>",
+            &["`opacity`", "outside [0, 1]"],
+        ),
+        ("<bsdf type=\"mask\"/>", &["needs one nested <bsdf>"]),
+    ] {
+        let text = xml(&format!(
+            "<shape type=\"cube\">\n{bsdf}\n</shape><emitter type=\"constant\"/>"
+        ));
+        let e = load_mitsuba_str(&text, Path::new("bad.xml"), &[]).unwrap_err();
+        let line = line_of(&text, bsdf);
+        assert!(
+            e.diagnostics
+                .iter()
+                .any(|d| d.line == line && words.iter().all(|w| d.to_string().contains(w))),
+            "{words:?}: {e}"
+        );
+    }
 }
 
 #[test]
@@ -566,7 +630,7 @@ fn includes_are_relative_to_the_including_file_and_name_their_own_lines() {
     ]);
     let s = s.unwrap();
     assert_eq!(
-        s.material(s.instances[0].material).bsdf,
+        one_sided(&s.material(s.instances[0].material).bsdf),
         Bsdf::Diffuse {
             reflectance: Vec3::splat(0.25).into()
         }
@@ -679,7 +743,7 @@ fn spectra_become_rgb_as_in_mitsubas_rgb_variants() {
     let m = s.material(s.instances[0].material);
     let Bsdf::Diffuse {
         reflectance: Param::Const(reflectance),
-    } = m.bsdf
+    } = one_sided(&m.bsdf)
     else {
         panic!()
     };
@@ -766,7 +830,7 @@ fn textures_fill_reflectances_and_roughness() {
         b.to_uv.transform_point2(glam::Vec2::ONE),
         glam::Vec2::new(2.0, 3.0)
     );
-    let mat = |i: usize| s.material(s.instances[i].material).bsdf.clone();
+    let mat = |i: usize| one_sided(&s.material(s.instances[i].material).bsdf);
     assert_eq!(
         mat(0),
         Bsdf::Diffuse {

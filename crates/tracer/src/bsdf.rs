@@ -1,9 +1,11 @@
 //! BSDFs in the local shading frame (+z = shading normal, turned towards the viewer, so every
 //! surface is two-sided for reflection; a transmitting BSDF samples `wi.z < 0`). `f` values
-//! exclude the cosine.
+//! exclude the cosine. The dielectrics are in `dielectric.rs`.
+use crate::dielectric::{RoughDielectric, sample_smooth, sample_thin};
 #[cfg(doc)]
 use crate::microfacet::internal_diffuse_reflectance;
-use crate::microfacet::{Ggx, fresnel_conductor, fresnel_dielectric};
+use crate::microfacet::{Microfacet, fresnel_conductor, fresnel_dielectric};
+use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -13,7 +15,7 @@ pub enum Bsdf {
         reflectance: Vec3A,
     },
     RoughConductor {
-        ggx: Ggx,
+        ggx: Microfacet,
         eta: Vec3A,
         k: Vec3A,
         specular: Vec3A,
@@ -24,17 +26,30 @@ pub enum Bsdf {
         k: Vec3A,
         specular: Vec3A,
     },
-    /// GGX coating over Lambert, after Mitsuba's `roughplastic` (`nonlinear = false`): the
-    /// diffuse base is divided by (1 − Fdr) and attenuated by the smooth-interface Fresnel
+    /// Microfacet coating over Lambert, after Mitsuba's `roughplastic` (`nonlinear = false`):
+    /// the diffuse base is divided by (1 − Fdr) and attenuated by the smooth-interface Fresnel
     /// transmittance on the way in and out (Mitsuba tabulates the rough-interface
     /// transmittance instead; the difference is small for roughness below ~0.3).
     Plastic {
         diffuse: Vec3A,
-        ggx: Ggx,
+        ggx: Microfacet,
         eta: f32,
         inv_eta2: f32,
         spec_weight: f32,
     },
+    /// Smooth glass; `eta` relative to the viewer's side (see `dielectric.rs`).
+    Dielectric {
+        eta: f32,
+        r: Vec3A,
+        t: Vec3A,
+    },
+    /// A thin pane; `eta` is the material's own (a pane looks the same from both sides).
+    ThinDielectric {
+        eta: f32,
+        r: Vec3A,
+        t: Vec3A,
+    },
+    RoughDielectric(RoughDielectric),
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -81,13 +96,19 @@ impl Bsdf {
         Bsdf::Diffuse { reflectance }
     }
 
-    /// A GGX conductor; `alpha` ≤ 1e-4 is a perfect mirror.
-    pub fn conductor(alpha: f32, eta: Vec3A, k: Vec3A, specular: Vec3A) -> Bsdf {
+    /// A microfacet conductor; `alpha` ≤ 1e-4 is a perfect mirror.
+    pub fn conductor(
+        alpha: f32,
+        distribution: Distribution,
+        eta: Vec3A,
+        k: Vec3A,
+        specular: Vec3A,
+    ) -> Bsdf {
         if alpha <= 1e-4 {
             Bsdf::Mirror { eta, k, specular }
         } else {
             Bsdf::RoughConductor {
-                ggx: Ggx { alpha },
+                ggx: Microfacet::new(alpha, distribution),
                 eta,
                 k,
                 specular,
@@ -97,11 +118,17 @@ impl Bsdf {
 
     /// The plastic over base `reflectance`; `fdr` is the internal diffuse reflectance of the
     /// coating's `ior` ([`internal_diffuse_reflectance`], computed once per material).
-    pub fn plastic(reflectance: Vec3A, alpha: f32, ior: f32, fdr: f32) -> Bsdf {
+    pub fn plastic(
+        reflectance: Vec3A,
+        alpha: f32,
+        distribution: Distribution,
+        ior: f32,
+        fdr: f32,
+    ) -> Bsdf {
         let d_mean = (reflectance.x + reflectance.y + reflectance.z) / 3.0;
         Bsdf::Plastic {
             diffuse: reflectance / (1.0 - fdr),
-            ggx: Ggx { alpha },
+            ggx: Microfacet::new(alpha, distribution),
             eta: ior,
             inv_eta2: 1.0 / (ior * ior),
             spec_weight: 1.0 / (1.0 + d_mean),
@@ -109,29 +136,45 @@ impl Bsdf {
     }
 
     /// True when the BSDF can send light through the surface: its samples may then have
-    /// `wi.z < 0` (the far side of the shading frame), and light arrives from both sides. Every
-    /// BSDF here only reflects; the match is exhaustive so that a new one has to say.
+    /// `wi.z < 0` (the far side of the shading frame), and light arrives from both sides. The
+    /// match is exhaustive so that a new BSDF has to say.
     pub fn has_transmission(&self) -> bool {
         match self {
             Bsdf::Diffuse { .. }
             | Bsdf::RoughConductor { .. }
             | Bsdf::Mirror { .. }
             | Bsdf::Plastic { .. } => false,
+            Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } | Bsdf::RoughDielectric(_) => {
+                true
+            }
         }
     }
 
     /// True when the BSDF is a pure delta lobe (no light sampling possible).
     pub fn is_delta(&self) -> bool {
-        matches!(self, Bsdf::Mirror { .. })
+        matches!(
+            self,
+            Bsdf::Mirror { .. } | Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. }
+        )
     }
 
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
+        if let Bsdf::RoughDielectric(d) = self {
+            return if wo.z > 0.0 {
+                d.eval(wo, wi)
+            } else {
+                Vec3A::ZERO
+            };
+        }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return Vec3A::ZERO;
         }
         match *self {
             Bsdf::Diffuse { reflectance } => reflectance * FRAC_1_PI,
-            Bsdf::Mirror { .. } => Vec3A::ZERO,
+            Bsdf::Mirror { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::RoughDielectric(_) => Vec3A::ZERO,
             Bsdf::RoughConductor {
                 ggx,
                 eta,
@@ -171,15 +214,21 @@ impl Bsdf {
     }
 
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if let Bsdf::RoughDielectric(d) = self {
+            return if wo.z > 0.0 { d.pdf(wo, wi) } else { 0.0 };
+        }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
         match *self {
             Bsdf::Diffuse { .. } => wi.z * FRAC_1_PI,
-            Bsdf::Mirror { .. } => 0.0,
+            Bsdf::Mirror { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::RoughDielectric(_) => 0.0,
             Bsdf::RoughConductor { ggx, .. } => {
                 let m = (wo + wi).normalize();
-                ggx.pdf_visible(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12))
+                ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12))
             }
             Bsdf::Plastic {
                 ggx,
@@ -189,7 +238,7 @@ impl Bsdf {
             } => {
                 let ps = Self::plastic_spec_prob(wo, eta, spec_weight);
                 let m = (wo + wi).normalize();
-                let spec = ggx.pdf_visible(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
+                let spec = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
                 ps * spec + (1.0 - ps) * wi.z * FRAC_1_PI
             }
         }
@@ -213,7 +262,10 @@ impl Bsdf {
                     delta: true,
                 });
             }
-            Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample_visible(wo, u)),
+            Bsdf::Dielectric { eta, r, t } => return Some(sample_smooth(wo, eta, r, t, u_lobe)),
+            Bsdf::ThinDielectric { eta, r, t } => return Some(sample_thin(wo, eta, r, t, u_lobe)),
+            Bsdf::RoughDielectric(d) => return d.sample(wo, u_lobe, u),
+            Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample(wo, u)),
             Bsdf::Plastic {
                 ggx,
                 eta,
@@ -221,7 +273,7 @@ impl Bsdf {
                 ..
             } => {
                 if u_lobe < Self::plastic_spec_prob(wo, eta, spec_weight) {
-                    reflect(wo, ggx.sample_visible(wo, u))
+                    reflect(wo, ggx.sample(wo, u))
                 } else {
                     cosine_hemisphere(u)
                 }
@@ -246,73 +298,5 @@ impl Bsdf {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sampler::{SampleStream, hash_key};
-
-    fn bsdfs() -> Vec<Bsdf> {
-        use crate::microfacet::internal_diffuse_reflectance;
-        vec![
-            Bsdf::diffuse(Vec3A::new(0.8, 0.5, 0.2)),
-            Bsdf::conductor(
-                0.3,
-                Vec3A::new(0.2, 0.9, 1.1),
-                Vec3A::new(3.9, 2.4, 2.1),
-                Vec3A::ONE,
-            ),
-            Bsdf::conductor(0.05, Vec3A::splat(1.5), Vec3A::splat(3.0), Vec3A::ONE),
-            Bsdf::plastic(
-                Vec3A::new(0.5, 0.3, 0.1),
-                0.2,
-                1.5,
-                internal_diffuse_reflectance(1.5),
-            ),
-        ]
-    }
-
-    /// "Sample matches pdf and eval": the importance-sampled estimate of the albedo equals
-    /// a brute-force uniform-hemisphere integral of eval·cos.
-    #[test]
-    fn sampling_is_consistent_with_eval_and_pdf() {
-        let wo = Vec3A::new(0.5, 0.1, 0.86).normalize();
-        for b in bsdfs() {
-            let n = 1 << 16;
-            let mut sampled = Vec3A::ZERO;
-            let mut uniform = Vec3A::ZERO;
-            let key = hash_key(&[7]);
-            for i in 0..n {
-                let mut s = SampleStream::new(key, i);
-                let ul = s.next_1d();
-                let u = s.next_2d();
-                if let Some(bs) = b.sample(wo, ul, u) {
-                    sampled += bs.weight;
-                    let pdf = b.pdf(wo, bs.wi);
-                    assert!((pdf - bs.pdf).abs() <= 1e-3 * pdf.max(1.0), "{b:?}");
-                }
-                let uu = s.next_2d();
-                let z = uu[0];
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = 2.0 * PI * uu[1];
-                let wi = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
-                uniform += b.eval(wo, wi) * wi.z * 2.0 * PI;
-            }
-            let sampled = sampled / n as f32;
-            let uniform = uniform / n as f32;
-            let rel = ((sampled - uniform).abs() / uniform.max(Vec3A::splat(1e-3))).max_element();
-            assert!(rel < 0.03, "{b:?}: sampled {sampled} vs uniform {uniform}");
-            assert!(
-                sampled.max_element() <= 1.0 + 1e-3,
-                "{b:?} creates energy: {sampled}"
-            );
-        }
-    }
-
-    #[test]
-    fn diffuse_albedo_is_exact() {
-        let b = Bsdf::Diffuse {
-            reflectance: Vec3A::new(0.3, 0.6, 0.9),
-        };
-        let s = b.sample(Vec3A::Z, 0.5, [0.3, 0.7]).unwrap();
-        assert!((s.weight - Vec3A::new(0.3, 0.6, 0.9)).abs().max_element() < 1e-5);
-    }
-}
+#[path = "bsdf_tests.rs"]
+mod tests;

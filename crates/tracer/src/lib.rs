@@ -11,6 +11,7 @@
 mod accel;
 mod bsdf;
 mod bvh_bench;
+mod dielectric;
 mod emitter;
 mod eye;
 mod film;

@@ -1,39 +1,60 @@
-//! GGX microfacet distribution (isotropic), Smith masking, visible-normal sampling and
-//! Fresnel terms. Local frame: the shading normal is +z.
+//! Microfacet distributions (GGX and Beckmann, isotropic), Smith masking, normal sampling
+//! (GGX: visible normals; Beckmann: the full distribution D(m)·cos θm) and Fresnel terms.
+//! Local frame: the shading normal is +z.
+use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::PI;
 
 #[derive(Clone, Copy, Debug)]
-pub struct Ggx {
+pub struct Microfacet {
     pub alpha: f32,
+    pub beckmann: bool,
 }
 
-impl Ggx {
+impl Microfacet {
+    pub fn new(alpha: f32, distribution: Distribution) -> Microfacet {
+        Microfacet {
+            alpha,
+            beckmann: distribution == Distribution::Beckmann,
+        }
+    }
+
     pub fn d(&self, m: Vec3A) -> f32 {
-        let a2 = self.alpha * self.alpha;
-        let c2 = m.z * m.z;
         if m.z <= 0.0 {
             return 0.0;
         }
-        let t = c2 * (a2 - 1.0) + 1.0;
-        a2 / (PI * t * t)
-    }
-
-    fn lambda(&self, w: Vec3A) -> f32 {
-        let c2 = w.z * w.z;
-        if c2 >= 1.0 {
-            return 0.0;
+        let a2 = self.alpha * self.alpha;
+        let c2 = m.z * m.z;
+        if self.beckmann {
+            let tan2 = (1.0 - c2).max(0.0) / c2;
+            (-tan2 / a2).exp() / (PI * a2 * c2 * c2)
+        } else {
+            let t = c2 * (a2 - 1.0) + 1.0;
+            a2 / (PI * t * t)
         }
-        let tan2 = (1.0 - c2).max(0.0) / c2.max(1e-12);
-        0.5 * (-1.0 + (1.0 + self.alpha * self.alpha * tan2).sqrt())
     }
 
-    /// Smith G1 for direction `w` and microfacet normal `m`.
+    /// Smith G1 of direction `w` for microfacet normal `m` (Beckmann: the rational fit of
+    /// Walter et al. 2007, as Mitsuba uses).
     pub fn g1(&self, w: Vec3A, m: Vec3A) -> f32 {
         if w.dot(m) * w.z <= 0.0 {
             return 0.0;
         }
-        1.0 / (1.0 + self.lambda(w))
+        let c2 = w.z * w.z;
+        if c2 >= 1.0 {
+            return 1.0;
+        }
+        let tan2 = (1.0 - c2).max(0.0) / c2.max(1e-12);
+        if self.beckmann {
+            let a = 1.0 / (self.alpha * tan2.sqrt());
+            if a >= 1.6 {
+                return 1.0;
+            }
+            let a2 = a * a;
+            (3.535 * a + 2.181 * a2) / (1.0 + 2.276 * a + 2.577 * a2)
+        } else {
+            1.0 / (1.0 + 0.5 * (-1.0 + (1.0 + self.alpha * self.alpha * tan2).sqrt()))
+        }
     }
 
     /// Separable Smith shadowing-masking, as Mitsuba 3 uses.
@@ -41,9 +62,35 @@ impl Ggx {
         self.g1(wi, m) * self.g1(wo, m)
     }
 
-    /// Samples a visible normal seen from `wi` (Heitz 2018, "Sampling the GGX Distribution of
-    /// Visible Normals"). `wi.z > 0`.
-    pub fn sample_visible(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
+    /// Samples a microfacet normal for viewing direction `wi` (`wi.z > 0`); its density is
+    /// [`Self::pdf`].
+    pub fn sample(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
+        if self.beckmann {
+            let tan2 = -self.alpha * self.alpha * (1.0 - u[0]).max(1e-12).ln();
+            let cos = 1.0 / (1.0 + tan2).sqrt();
+            let sin = (1.0 - cos * cos).max(0.0).sqrt();
+            let phi = 2.0 * PI * u[1];
+            Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos)
+        } else {
+            self.sample_visible(wi, u)
+        }
+    }
+
+    /// Density of [`Self::sample`] over microfacet normals.
+    pub fn pdf(&self, wi: Vec3A, m: Vec3A) -> f32 {
+        if self.beckmann {
+            self.d(m) * m.z.max(0.0)
+        } else {
+            if wi.z <= 0.0 {
+                return 0.0;
+            }
+            self.g1(wi, m) * wi.dot(m).max(0.0) * self.d(m) / wi.z
+        }
+    }
+
+    /// Samples a visible GGX normal seen from `wi` (Heitz 2018, "Sampling the GGX
+    /// Distribution of Visible Normals"). `wi.z > 0`.
+    fn sample_visible(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
         let a = self.alpha;
         let vh = Vec3A::new(a * wi.x, a * wi.y, wi.z).normalize();
         let lensq = vh.x * vh.x + vh.y * vh.y;
@@ -61,14 +108,6 @@ impl Ggx {
         p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * p2;
         let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
         Vec3A::new(a * nh.x, a * nh.y, nh.z.max(1e-6)).normalize()
-    }
-
-    /// Density of [`Self::sample_visible`] over microfacet normals.
-    pub fn pdf_visible(&self, wi: Vec3A, m: Vec3A) -> f32 {
-        if wi.z <= 0.0 {
-            return 0.0;
-        }
-        self.g1(wi, m) * wi.dot(m).max(0.0) * self.d(m) / wi.z
     }
 }
 
@@ -89,17 +128,24 @@ pub fn fresnel_conductor(cos_i: f32, eta: f32, k: f32) -> f32 {
     (0.5 * (rs + rp)).clamp(0.0, 1.0)
 }
 
-/// Unpolarised Fresnel reflectance from outside (IOR 1) into a dielectric of IOR `eta`.
+/// Unpolarised Fresnel reflectance at an interface of relative IOR `eta` (transmitted side
+/// over incident side; below 1 when leaving a denser medium), for incidence cosine `cos_i`.
 pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    fresnel_refract(cos_i, eta).0
+}
+
+/// [`fresnel_dielectric`] and the cosine of the refracted direction (0 under total internal
+/// reflection, where the reflectance is 1).
+pub fn fresnel_refract(cos_i: f32, eta: f32) -> (f32, f32) {
     let cos_i = cos_i.clamp(0.0, 1.0);
     let sin_t2 = (1.0 - cos_i * cos_i) / (eta * eta);
     if sin_t2 >= 1.0 {
-        return 1.0;
+        return (1.0, 0.0);
     }
     let cos_t = (1.0 - sin_t2).sqrt();
     let rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     let rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    0.5 * (rs * rs + rp * rp)
+    (0.5 * (rs * rs + rp * rp), cos_t)
 }
 
 /// Hemispherical average of the dielectric Fresnel reflectance seen from inside a medium of
@@ -133,10 +179,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn ggx_d_integrates_projected_area_to_one() {
+    fn d_integrates_projected_area_to_one() {
         // ∫ D(m) cos θm dm = 1 over the hemisphere.
-        for alpha in [0.05f32, 0.3, 0.8] {
-            let g = Ggx { alpha };
+        for (alpha, d) in [0.05f32, 0.3, 0.8]
+            .into_iter()
+            .flat_map(|a| [(a, Distribution::Ggx), (a, Distribution::Beckmann)])
+        {
+            let g = Microfacet::new(alpha, d);
             let n = 400_000; // fine enough to resolve the alpha = 0.05 peak
             let mut s = 0.0f64;
             for i in 0..n {
@@ -145,7 +194,7 @@ mod tests {
                 let m = Vec3A::new(st as f32, 0.0, ct as f32);
                 s += g.d(m) as f64 * ct * 2.0 * std::f64::consts::PI / n as f64;
             }
-            assert!((s - 1.0).abs() < 0.02, "alpha {alpha}: {s}");
+            assert!((s - 1.0).abs() < 0.02, "alpha {alpha} {d:?}: {s}");
         }
     }
 

@@ -3,11 +3,17 @@
 //! hit), [`PathState::sample_light`] (next-event estimation), [`PathState::scatter`] (continue
 //! along a BSDF sample, reflected or transmitted) and [`PathState::roulette`].
 //!
+//! **The AOV vertex** is the first vertex that is not a delta event (the first non-specular
+//! hit): seen through glass, a mirror or a mask's hole, the AOVs (albedo, normal, depth, the
+//! WCAM and irradiance re-renders) read the surface behind, with the specular chain's
+//! throughput, and whatever the chain itself shows (an emitter, the environment) counts as seen
+//! directly. Without such chains it is the first hit.
+//!
 //! Everything a step needs from earlier steps lives in [`PathState`]; everything it needs
 //! about the current surface lives in [`Vertex`]; its random numbers come in
 //! [`VertexSamples`]. A batched or wavefront executor can therefore run one step over many
 //! paths at a time and get the same result as [`crate::trace`].
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::RayScratch;
 use crate::integrator::{
     Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic, visible,
@@ -35,10 +41,14 @@ pub struct PathState {
     prev_n: Option<Vec3A>,
     /// The 2-D light sample of the next vertex (drawn with the direction that leads to it).
     u_light: [f32; 2],
-    /// Factors applied to contributions that pass through the first vertex (AOVs).
+    /// Factors applied to contributions that pass through the AOV vertex.
     ka: Vec3A,
     ke: Vec3A,
     aovs: bool,
+    /// True until the AOV vertex has scattered (every vertex so far was a delta event).
+    specular_chain: bool,
+    /// Distance along the path to the current hit while `specular_chain` (the depth AOV).
+    travelled: f32,
     pub out: PathSample,
 }
 
@@ -49,6 +59,9 @@ pub struct Vertex {
     frame: Frame,
     wo_l: Vec3A,
     bsdf: Bsdf,
+    /// The probability that the surface scatters (masks); otherwise light passes straight
+    /// through, a delta event.
+    opacity: f32,
     /// Ray origins just off the surface on the viewer's side and behind it.
     p_front: Vec3A,
     p_back: Vec3A,
@@ -59,6 +72,7 @@ pub struct VertexSamples {
     pick: f32,
     lobe: f32,
     pub rr: f32,
+    mask: f32,
     bsdf: [f32; 2],
     light_next: [f32; 2],
 }
@@ -69,13 +83,14 @@ impl VertexSamples {
         let pick = s.next_1d();
         let lobe = s.next_1d();
         let rr = s.next_1d();
-        let _ = s.next_1d();
+        let mask = s.next_1d();
         let bsdf = s.next_2d();
         let light_next = s.next_2d();
         VertexSamples {
             pick,
             lobe,
             rr,
+            mask,
             bsdf,
             light_next,
         }
@@ -86,15 +101,17 @@ impl Vertex {
     /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there.
     #[inline]
     pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A) -> Vertex {
-        // Shading frame on the viewer's side; every surface reflects on both sides.
-        let ng = if si.ng.dot(wo) > 0.0 { si.ng } else { -si.ng };
+        // Shading frame on the viewer's side; the BSDF knows which side that is.
+        let front = si.ng.dot(wo) > 0.0;
+        let ng = if front { si.ng } else { -si.ng };
         let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
         let frame = Frame::new(ns);
         Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
-            bsdf: scene.materials.bsdf(si),
+            bsdf: scene.materials.bsdf(si, front),
+            opacity: scene.materials.opacity(si),
             p_front: offset(si.p, ng),
             p_back: offset(si.p, -ng),
         }
@@ -126,11 +143,13 @@ impl PathState {
             ka: Vec3A::ZERO,
             ke: Vec3A::ZERO,
             aovs,
+            specular_chain: true,
+            travelled: 0.0,
             out: PathSample::default(),
         }
     }
 
-    /// Adds radiance `c` that reached the camera through the current vertex.
+    /// Adds radiance `c` that reached the camera through a vertex after the AOV vertex.
     #[inline]
     fn add_through_later_vertex(&mut self, c: Vec3A) {
         self.out.l += c;
@@ -149,20 +168,21 @@ impl PathState {
             }
         };
         let c = self.beta * env * w;
-        if self.depth > 0 {
-            self.add_through_later_vertex(c);
-        } else {
+        if self.specular_chain {
             self.out.l += c;
+        } else {
+            self.add_through_later_vertex(c);
         }
     }
 
-    /// The ray hit `si`: first-hit AOVs and the emission seen (front side only), weighted
-    /// against light sampling.
+    /// The ray hit `si`: the geometric AOVs (until the AOV vertex) and the emission seen
+    /// (front side only), weighted against light sampling.
     #[inline]
     pub fn shade_hit(&mut self, scene: &SceneData, si: &SurfaceInteraction) {
-        if self.aovs && self.depth == 0 {
+        if self.aovs && self.specular_chain {
+            self.travelled += si.t;
             self.out.hit = true;
-            self.out.depth = si.t;
+            self.out.depth = self.travelled;
             self.out.normal = si.ns;
         }
         if si.light == u32::MAX || si.ng.dot(self.d) >= 0.0 {
@@ -177,7 +197,7 @@ impl PathState {
             ),
         };
         let c = self.beta * scene.materials.emission(si.material) * w;
-        if self.depth == 0 {
+        if self.specular_chain {
             self.out.l += c;
             self.out.emitter = true;
         } else {
@@ -213,20 +233,25 @@ impl PathState {
             return;
         }
         let wi_l = v.frame.to_local(ls.wi);
-        let f = v.bsdf.eval(v.wo_l, wi_l);
+        // Shadow rays treat every surface as opaque, as Mitsuba's path integrator does; light
+        // through glass or a mask's holes arrives by BSDF sampling.
+        let f_surface = v.bsdf.eval(v.wo_l, wi_l);
+        let f = f_surface * v.opacity;
         if f.max_element() <= 0.0 || !visible(scene, scratch, from, ls.wi, ls.dist) {
             return;
         }
         let w = if ls.delta {
             1.0
         } else {
-            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l))
+            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l) * v.opacity)
         };
         let c = self.beta * f * ls.li * (wi_l.z.abs() * w / ls.pdf);
-        if self.depth == 0 {
+        if self.specular_chain {
             self.out.l += c;
-            self.out.achromatic += c * achromatic_ratio(f);
-            self.out.irradiance += c * irradiance_ratio(f);
+            // The surface's own BSDF, not its mask's share: the irradiance of a half-transparent
+            // surface is counted with its opacity as the probability of scattering there.
+            self.out.achromatic += c * achromatic_ratio(f_surface);
+            self.out.irradiance += c * irradiance_ratio(f_surface);
         } else {
             self.add_through_later_vertex(c);
         }
@@ -236,7 +261,22 @@ impl PathState {
     /// the path ends (no sample, or one on the wrong side of the geometric surface).
     #[inline]
     pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
-        let Some(bs) = v.bsdf.sample(v.wo_l, u.lobe, u.bsdf) else {
+        let bs = if u.mask >= v.opacity {
+            // Through a mask's hole: straight on, unweighted.
+            Some(BsdfSample {
+                wi: -v.wo_l,
+                f: Vec3A::ONE / v.wo_l.z.max(1e-12),
+                pdf: 1.0,
+                weight: Vec3A::ONE,
+                delta: true,
+            })
+        } else {
+            v.bsdf.sample(v.wo_l, u.lobe, u.bsdf).map(|b| BsdfSample {
+                pdf: b.pdf * v.opacity,
+                ..b
+            })
+        };
+        let Some(bs) = bs else {
             return false;
         };
         let wi = v.frame.to_world(bs.wi);
@@ -246,15 +286,11 @@ impl PathState {
         if front != (bs.wi.z > 0.0) || wi.dot(v.ng) == 0.0 {
             return false;
         }
-        if self.depth == 0 {
-            self.out.albedo = bs.weight;
-            if bs.delta {
-                self.ka = achromatic_ratio(bs.weight);
-                self.ke = Vec3A::ZERO; // irradiance cannot be estimated through a delta lobe
-            } else {
-                self.ka = achromatic_ratio(bs.f);
-                self.ke = irradiance_ratio(bs.f);
-            }
+        if self.specular_chain && !bs.delta {
+            self.specular_chain = false;
+            self.out.albedo = self.beta * bs.weight;
+            self.ka = achromatic_ratio(bs.f);
+            self.ke = irradiance_ratio(bs.f);
         }
         self.beta *= bs.weight;
         self.u_light = u.light_next;

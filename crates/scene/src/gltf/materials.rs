@@ -22,7 +22,7 @@
 //! metallic value strictly between 0 and 1, emissive and normal textures, alpha modes.
 use super::read::{GltfFile, at};
 use super::textures::{Textures, Use};
-use crate::{Bsdf, Diagnostic, Material, Param, Rgb, Scene, Severity};
+use crate::{Bsdf, Diagnostic, Distribution, Material, Param, Rgb, Scene, Severity};
 
 /// The eyeadapt material of glTF material `m` (its warnings pushed to `warnings`); textures
 /// it reads are added to `scene`'s table.
@@ -113,6 +113,7 @@ pub fn material(
     let bsdf = if metallic >= 0.5 {
         Bsdf::Conductor {
             alpha,
+            distribution: Distribution::Ggx,
             eta: Rgb::ZERO,
             k: Rgb::ONE,
             specular_reflectance: base_param,
@@ -125,6 +126,7 @@ pub fn material(
         Bsdf::Plastic {
             reflectance: base_param,
             alpha,
+            distribution: Distribution::Ggx,
             ior: 1.5,
         }
     };

@@ -1,7 +1,7 @@
 //! `[[materials]]`: BSDF type, its parameters and the emission.
 use super::Ctx;
 use super::format::MaterialDef;
-use crate::{Bsdf, Material, Param, Rgb};
+use crate::{Bsdf, Distribution, Material, Param, Rgb};
 
 impl Ctx<'_> {
     pub(super) fn material(&mut self, m: &MaterialDef) -> Material {
@@ -133,6 +133,7 @@ impl Ctx<'_> {
                 );
                 Bsdf::Conductor {
                     alpha,
+                    distribution: Distribution::Ggx,
                     eta,
                     k,
                     specular_reflectance,
@@ -159,6 +160,7 @@ impl Ctx<'_> {
                 Bsdf::Plastic {
                     reflectance,
                     alpha,
+                    distribution: Distribution::Ggx,
                     ior,
                 }
             }

@@ -1,37 +1,14 @@
-//! BSDF plugins: diffuse, conductor, roughconductor, plastic, roughplastic, twosided.
+//! BSDF plugins: diffuse, conductor, roughconductor, plastic, roughplastic, twosided, mask
+//! (the dielectrics are in `dielectric.rs`).
+//!
+//! Mitsuba's reflecting BSDFs are one-sided: their back sides are black unless a `twosided`
+//! wraps them. They are built as [`Bsdf::OneSided`], and `twosided` unwraps them again.
 use super::Builder;
 use crate::mitsuba::presets::CONDUCTOR_PRESETS;
-use crate::mitsuba::xml::{ChildKind, Obj, Value};
-use crate::{Bsdf, Param, Rgb};
+use crate::mitsuba::xml::{ChildKind, Obj};
+use crate::{Bsdf, Distribution, Param, Rgb};
 
-const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic and twosided";
-/// Named IORs accepted by Mitsuba's `int_ior`/`ext_ior` (Mitsuba's `ior.h` table).
-const IORS: &[(&str, f64)] = &[
-    ("vacuum", 1.0),
-    ("helium", 1.000036),
-    ("hydrogen", 1.000132),
-    ("air", 1.000277),
-    ("carbon dioxide", 1.00045),
-    ("water", 1.3330),
-    ("acetone", 1.36),
-    ("ethanol", 1.361),
-    ("carbon tetrachloride", 1.461),
-    ("glycerol", 1.4729),
-    ("benzene", 1.501),
-    ("silicone oil", 1.52045),
-    ("bromine", 1.661),
-    ("water ice", 1.31),
-    ("fused quartz", 1.458),
-    ("pyrex", 1.470),
-    ("acrylic glass", 1.49),
-    ("polypropylene", 1.49),
-    ("bk7", 1.5046),
-    ("sodium chloride", 1.544),
-    ("amber", 1.55),
-    ("pet", 1.5750),
-    ("diamond", 2.419),
-];
-
+const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, mask and twosided";
 /// A BSDF as built from XML, before it becomes a material.
 #[derive(Clone, Debug)]
 pub(crate) struct BuiltBsdf {
@@ -84,14 +61,17 @@ impl<'t> Builder<'t> {
         let name =
             o.id.clone()
                 .unwrap_or_else(|| format!("{} at line {}", o.describe(), self.sources.line(o.at)));
+        let one_sided = |b: Bsdf| Bsdf::OneSided(Box::new(b));
         let bsdf = match o.kind.as_str() {
             "twosided" => return self.twosided(o),
+            "mask" => return self.mask(o, name),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
-                Bsdf::Diffuse { reflectance }
+                one_sided(Bsdf::Diffuse { reflectance })
             }
-            "conductor" | "roughconductor" => self.conductor(o),
-            "plastic" | "roughplastic" => self.plastic(o),
+            "conductor" | "roughconductor" => one_sided(self.conductor(o)),
+            "plastic" | "roughplastic" => one_sided(self.plastic(o)),
+            "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(o),
             _ => {
                 self.unsupported(o, BSDFS);
                 return None;
@@ -121,8 +101,8 @@ impl<'t> Builder<'t> {
         Param::Const(c)
     }
 
-    /// eyeadapt is always two-sided, so `twosided` just unwraps its one BSDF.
-    pub(super) fn twosided(&mut self, o: &'t Obj) -> Option<BuiltBsdf> {
+    /// The one nested `<bsdf>` (or reference) of `o`, which `what` needs.
+    fn nested_bsdf(&mut self, o: &'t Obj, what: &str) -> Option<BuiltBsdf> {
         let inner: Vec<_> = o
             .children
             .iter()
@@ -134,7 +114,7 @@ impl<'t> Builder<'t> {
         for c in &inner {
             c.used.set(true);
         }
-        let result = match inner.as_slice() {
+        match inner.as_slice() {
             [c] => match &c.kind {
                 ChildKind::Obj(b) => self.bsdf(b),
                 ChildKind::Ref(id) => self.bsdf_by_id(id, c.at),
@@ -144,40 +124,68 @@ impl<'t> Builder<'t> {
                 None
             }
             _ => {
-                self.error(
-                    o.at,
-                    format!("unsupported {} with different front and back BSDFs: eyeadapt surfaces scatter the same on both sides", o.describe()),
-                );
+                self.error(o.at, format!("unsupported {} with {what}", o.describe()));
                 None
             }
-        };
+        }
+    }
+
+    /// `twosided` makes its one BSDF reflect alike on both sides.
+    pub(super) fn twosided(&mut self, o: &'t Obj) -> Option<BuiltBsdf> {
+        let result = self.nested_bsdf(
+            o,
+            "different front and back BSDFs: eyeadapt surfaces scatter the same on both sides",
+        );
         self.finish(o);
         result.map(|b| BuiltBsdf {
             name: o.id.clone().unwrap_or(b.name),
-            bsdf: b.bsdf,
+            bsdf: two_sided(b.bsdf),
         })
     }
 
-    /// The roughness of a `rough` plugin (a constant or a texture), 0 for the smooth one.
-    fn alpha(&mut self, o: &'t Obj, rough: &str) -> Param<f32> {
+    /// `mask`: its BSDF where `opacity` (0.5, or a texture) is 1, a hole where it is 0.
+    fn mask(&mut self, o: &'t Obj, name: String) -> Option<BuiltBsdf> {
+        let opacity = match self.float_texture(o, "opacity") {
+            Some(Some(t)) => Param::Texture(t),
+            Some(None) => Param::Const(0.5),
+            None => Param::Const(self.float_in(o, "opacity", 0.0..=1.0).unwrap_or(0.5) as f32),
+        };
+        let inner = self.nested_bsdf(o, "more than one nested <bsdf>");
+        self.finish(o);
+        Some(BuiltBsdf {
+            bsdf: Bsdf::Mask {
+                opacity,
+                bsdf: Box::new(inner?.bsdf),
+            },
+            name,
+        })
+    }
+
+    /// The roughness and distribution of a `rough` plugin (alpha a constant or a texture);
+    /// alpha 0 for the smooth one.
+    pub(super) fn alpha(&mut self, o: &'t Obj, rough: &str) -> (Param<f32>, Distribution) {
         if o.kind != rough {
-            return Param::Const(0.0);
+            return (Param::Const(0.0), Distribution::Ggx);
         }
         match self.float_texture(o, "alpha") {
             Some(Some(t)) => {
                 // Still reads `distribution` and `sample_visible`.
-                self.roughness(o, 0.1);
-                Param::Texture(t)
+                let (_, d) = self.roughness(o, 0.1);
+                (Param::Texture(t), d)
             }
-            Some(None) => Param::Const(0.1),
-            None => Param::Const(self.roughness(o, 0.1)),
+            Some(None) => (Param::Const(0.1), Distribution::Ggx),
+            None => {
+                let (a, d) = self.roughness(o, 0.1);
+                (Param::Const(a), d)
+            }
         }
     }
 
-    /// `alpha` (or equal `alpha_u`/`alpha_v`) and `distribution` of rough plugins.
-    pub(super) fn roughness(&mut self, o: &'t Obj, default: f64) -> f32 {
+    /// `alpha` (or equal `alpha_u`/`alpha_v`) and `distribution` (Mitsuba's default:
+    /// Beckmann) of rough plugins.
+    pub(super) fn roughness(&mut self, o: &'t Obj, default: f64) -> (f32, Distribution) {
         // Mitsuba's roughplastic is isotropic: there `alpha_u` is an unknown parameter.
-        let anisotropic = o.kind == "roughconductor" && self.prop(o, "alpha_u").is_some();
+        let anisotropic = o.kind != "roughplastic" && self.prop(o, "alpha_u").is_some();
         let alpha = match (self.prop(o, "alpha").is_some(), anisotropic) {
             (true, _) => self.float_in(o, "alpha", 0.0..=1.0).unwrap_or(default),
             (false, true) => {
@@ -193,28 +201,28 @@ impl<'t> Builder<'t> {
             }
             (false, false) => default,
         };
-        match self.string(o, "distribution") {
-            Some(("ggx", _)) => {}
-            Some(("beckmann", at)) => self.warning(
-                at,
-                format!("{}: the Beckmann distribution is approximated by GGX with the same alpha", o.describe()),
-            ),
-            Some((other, at)) => self.error(
-                at,
-                format!("{}: unknown distribution \"{other}\" (expected ggx or beckmann)", o.describe()),
-            ),
-            None => self.warning(
-                o.at,
-                format!("{}: Mitsuba's default Beckmann distribution is approximated by GGX with the same alpha (say <string name=\"distribution\" value=\"ggx\"/> to match exactly)", o.describe()),
-            ),
-        }
-        // Accepted: eyeadapt always samples visible normals.
+        let distribution = match self.string(o, "distribution") {
+            Some(("ggx", _)) => Distribution::Ggx,
+            Some(("beckmann", _)) | None => Distribution::Beckmann,
+            Some((other, at)) => {
+                self.error(
+                    at,
+                    format!(
+                        "{}: unknown distribution \"{other}\" (expected ggx or beckmann)",
+                        o.describe()
+                    ),
+                );
+                Distribution::Ggx
+            }
+        };
+        // Accepted: eyeadapt samples GGX by its visible normals and Beckmann by D(m)·cos θm
+        // (both unbiased; only the noise differs).
         self.boolean(o, "sample_visible");
-        alpha as f32
+        (alpha as f32, distribution)
     }
 
     pub(super) fn conductor(&mut self, o: &'t Obj) -> Bsdf {
-        let alpha = self.alpha(o, "roughconductor");
+        let (alpha, distribution) = self.alpha(o, "roughconductor");
         let material = self.string(o, "material");
         let has_eta = self.prop(o, "eta").is_some() || self.prop(o, "k").is_some();
         let (eta, k) = match material {
@@ -257,42 +265,15 @@ impl<'t> Builder<'t> {
             .unwrap_or(Param::Const(Rgb::ONE));
         Bsdf::Conductor {
             alpha,
+            distribution,
             eta,
             k,
             specular_reflectance,
         }
     }
 
-    pub(super) fn ior(&mut self, o: &'t Obj, name: &str, default: f64) -> f64 {
-        let Some(p) = self.prop(o, name) else {
-            return default;
-        };
-        match &p.value {
-            Value::Float(x) => *x,
-            Value::Integer(i) => *i as f64,
-            Value::Str(s) => match IORS.iter().find(|(n, _)| n.eq_ignore_ascii_case(s)) {
-                Some((_, v)) => *v,
-                None => {
-                    self.error(
-                        p.at,
-                        format!(
-                            "{}: unknown IOR name \"{s}\" (known: {})",
-                            o.describe(),
-                            IORS.iter().map(|i| i.0).collect::<Vec<_>>().join(", ")
-                        ),
-                    );
-                    default
-                }
-            },
-            _ => {
-                self.wrong_type(o, p, "a <float> or <string>");
-                default
-            }
-        }
-    }
-
     pub(super) fn plastic(&mut self, o: &'t Obj) -> Bsdf {
-        let alpha = self.alpha(o, "roughplastic");
+        let (alpha, distribution) = self.alpha(o, "roughplastic");
         let reflectance = self.reflectance(o, "diffuse_reflectance");
         let int_ior = self.ior(o, "int_ior", 1.49);
         let ext_ior = self.ior(o, "ext_ior", 1.000277);
@@ -334,7 +315,20 @@ impl<'t> Builder<'t> {
                 Param::Const(a) => Param::Const(a.max(0.01)),
                 t => t,
             },
+            distribution,
             ior: ior as f32,
         }
+    }
+}
+
+/// `b` reflecting alike on both sides: the one-sided wrappers removed, also inside masks.
+fn two_sided(b: Bsdf) -> Bsdf {
+    match b {
+        Bsdf::OneSided(inner) => two_sided(*inner),
+        Bsdf::Mask { opacity, bsdf } => Bsdf::Mask {
+            opacity,
+            bsdf: Box::new(two_sided(*bsdf)),
+        },
+        other => other,
     }
 }

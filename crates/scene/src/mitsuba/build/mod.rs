@@ -10,6 +10,7 @@ use crate::{Light, MaterialId, Scene};
 use std::collections::{HashMap, HashSet};
 
 mod bsdf;
+mod dielectric;
 mod emitter;
 mod params;
 mod sensor;

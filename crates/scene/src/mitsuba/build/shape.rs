@@ -64,12 +64,7 @@ impl<'t> Builder<'t> {
             (Ok(b), Some(emission)) => {
                 let (bsdf, name) = match b {
                     Some(b) => (b.bsdf, b.name),
-                    None => (
-                        Bsdf::Diffuse {
-                            reflectance: Rgb::splat(0.5).into(),
-                        },
-                        "default diffuse".to_string(),
-                    ),
+                    None => (default_bsdf(), "default diffuse".to_string()),
                 };
                 Some(self.scene.add_material(Material {
                     name: format!("{name} + area emitter of {label}"),
@@ -90,10 +85,11 @@ impl<'t> Builder<'t> {
                 }
             },
             (Ok(None), None) => Some(*self.default_material.get_or_insert_with(|| {
-                self.scene.add_material(Material::diffuse(
-                    "default (Mitsuba's diffuse 0.5)",
-                    Rgb::splat(0.5),
-                ))
+                self.scene.add_material(Material {
+                    name: "default (Mitsuba's diffuse 0.5)".into(),
+                    bsdf: default_bsdf(),
+                    emission: Rgb::ZERO,
+                })
             })),
         };
 
@@ -359,4 +355,11 @@ fn mitsuba_frame(n: DVec3) -> (DVec3, DVec3) {
         DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
         DVec3::new(b, sign + n.y * n.y * a, -n.y),
     )
+}
+
+/// Mitsuba's BSDF for a shape without one: a one-sided diffuse reflector of 0.5.
+fn default_bsdf() -> Bsdf {
+    Bsdf::OneSided(Box::new(Bsdf::Diffuse {
+        reflectance: Rgb::splat(0.5).into(),
+    }))
 }

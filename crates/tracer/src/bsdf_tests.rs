@@ -1,0 +1,260 @@
+//! Tests of every BSDF: sampling against evaluation (a χ² test over a binned sphere, as
+//! Mitsuba's test suite does, and the sampled estimate of the albedo against a brute-force
+//! integral), the white-furnace energy bound, reciprocity, and R + T = 1 for smooth glass.
+use super::*;
+use crate::dielectric::RoughDielectric;
+use crate::microfacet::internal_diffuse_reflectance;
+use crate::sampler::{SampleStream, hash_key};
+
+fn rough_glass(alpha: f32, d: Distribution, eta: f32) -> Bsdf {
+    Bsdf::RoughDielectric(RoughDielectric {
+        md: Microfacet::new(alpha, d),
+        eta,
+        r: Vec3A::ONE,
+        t: Vec3A::ONE,
+    })
+}
+
+/// Every non-delta BSDF, with both distributions and both sides of glass.
+fn smooth_lobed() -> Vec<Bsdf> {
+    let mut v = vec![Bsdf::diffuse(Vec3A::new(0.8, 0.5, 0.2))];
+    for d in [Distribution::Ggx, Distribution::Beckmann] {
+        v.push(Bsdf::conductor(
+            0.3,
+            d,
+            Vec3A::new(0.2, 0.9, 1.1),
+            Vec3A::new(3.9, 2.4, 2.1),
+            Vec3A::ONE,
+        ));
+        v.push(Bsdf::conductor(
+            0.05,
+            d,
+            Vec3A::splat(1.5),
+            Vec3A::splat(3.0),
+            Vec3A::ONE,
+        ));
+        v.push(Bsdf::plastic(
+            Vec3A::new(0.5, 0.3, 0.1),
+            0.2,
+            d,
+            1.5,
+            internal_diffuse_reflectance(1.5),
+        ));
+        v.push(rough_glass(0.3, d, 1.5));
+        v.push(rough_glass(0.3, d, 1.0 / 1.5));
+        v.push(rough_glass(0.08, d, 1.33));
+    }
+    v
+}
+
+fn wo() -> Vec3A {
+    Vec3A::new(0.5, 0.1, 0.86).normalize()
+}
+
+/// `f` times eta² where it transmits: the importance (not radiance) weight, which no BSDF
+/// may make exceed 1 on average.
+fn importance(b: &Bsdf, wi: Vec3A, w: Vec3A) -> Vec3A {
+    match b {
+        Bsdf::RoughDielectric(d) if wi.z < 0.0 => w * d.eta * d.eta,
+        Bsdf::Dielectric { eta, .. } if wi.z < 0.0 => w * eta * eta,
+        _ => w,
+    }
+}
+
+/// "Sample matches eval": the importance-sampled albedo equals a brute-force uniform-sphere
+/// integral of eval·|cos|, the sampled pdf equals the evaluated one, and no BSDF creates
+/// energy (white furnace).
+#[test]
+fn sampling_is_consistent_with_eval_and_pdf() {
+    let wo = wo();
+    for b in smooth_lobed() {
+        let n = 1 << 16;
+        let mut sampled = Vec3A::ZERO;
+        let mut uniform = Vec3A::ZERO;
+        let mut energy = Vec3A::ZERO;
+        let key = hash_key(&[7]);
+        for i in 0..n {
+            let mut s = SampleStream::new(key, i);
+            let ul = s.next_1d();
+            let u = s.next_2d();
+            if let Some(bs) = b.sample(wo, ul, u) {
+                sampled += bs.weight;
+                energy += importance(&b, bs.wi, bs.weight);
+                let pdf = b.pdf(wo, bs.wi);
+                assert!((pdf - bs.pdf).abs() <= 1e-3 * pdf.max(1.0), "{b:?}");
+            }
+            let uu = s.next_2d();
+            let z = 2.0 * uu[0] - 1.0;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = 2.0 * PI * uu[1];
+            let wi = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+            uniform += b.eval(wo, wi) * wi.z.abs() * 4.0 * PI;
+        }
+        let sampled = sampled / n as f32;
+        let uniform = uniform / n as f32;
+        let energy = energy / n as f32;
+        let rel = ((sampled - uniform).abs() / uniform.max(Vec3A::splat(1e-3))).max_element();
+        assert!(rel < 0.03, "{b:?}: sampled {sampled} vs uniform {uniform}");
+        assert!(
+            energy.max_element() <= 1.0 + 2e-3,
+            "{b:?} creates energy: {energy}"
+        );
+    }
+}
+
+/// Pearson's χ² between sampled directions and the pdf integrated over the bins of a
+/// (cos θ, φ) grid of the sphere; bins expecting fewer than 5 samples are pooled. The bound
+/// is the χ² quantile's normal approximation at about 1e-4 significance.
+#[test]
+fn sampled_directions_follow_the_pdf_chi2() {
+    const NT: usize = 20;
+    const NP: usize = 40;
+    const SUB: usize = 16;
+    let wo = wo();
+    let n = 200_000u32;
+    for b in smooth_lobed() {
+        let mut observed = vec![0f64; NT * NP];
+        let key = hash_key(&[11]);
+        let mut total = 0.0;
+        for i in 0..n {
+            let mut s = SampleStream::new(key, i);
+            let ul = s.next_1d();
+            if let Some(bs) = b.sample(wo, ul, s.next_2d()) {
+                observed[bin(bs.wi, NT, NP)] += 1.0;
+                total += 1.0;
+            }
+        }
+        // The pdf over each bin, by a SUB × SUB midpoint rule in (cos θ, φ).
+        let mut expected = vec![0f64; NT * NP];
+        let (dz, dp) = (2.0 / NT as f64, 2.0 * std::f64::consts::PI / NP as f64);
+        for (k, e) in expected.iter_mut().enumerate() {
+            let (it, ip) = (k / NP, k % NP);
+            for a in 0..SUB {
+                for c in 0..SUB {
+                    let z = -1.0 + dz * (it as f64 + (a as f64 + 0.5) / SUB as f64);
+                    let p = dp * (ip as f64 + (c as f64 + 0.5) / SUB as f64);
+                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let wi = Vec3A::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
+                    *e += b.pdf(wo, wi) as f64 * dz * dp / (SUB * SUB) as f64;
+                }
+            }
+            *e *= n as f64;
+        }
+        // Samples the BSDF rejects are the missing mass: compare to the pdf's own mass.
+        let mass: f64 = expected.iter().sum();
+        assert!(
+            (mass - total).abs() < 0.02 * n as f64,
+            "{b:?}: {mass} vs {total}"
+        );
+        let (mut chi2, mut dof, mut pool_o, mut pool_e) = (0.0, 0usize, 0.0, 0.0);
+        for (o, e) in observed.iter().zip(&expected) {
+            if *e < 5.0 {
+                pool_o += o;
+                pool_e += e;
+            } else {
+                chi2 += (o - e) * (o - e) / e;
+                dof += 1;
+            }
+        }
+        if pool_e >= 5.0 {
+            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+            dof += 1;
+        }
+        let bound = dof as f64 + 3.7 * (2.0 * dof as f64).sqrt() + 10.0;
+        assert!(dof > 10, "{b:?}: too few bins ({dof})");
+        assert!(
+            chi2 < bound,
+            "{b:?}: χ² {chi2:.1} over {dof} bins (bound {bound:.1})"
+        );
+    }
+}
+
+fn bin(w: Vec3A, nt: usize, np: usize) -> usize {
+    let it = (((w.z + 1.0) * 0.5 * nt as f32) as usize).min(nt - 1);
+    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+    let ip = ((phi / (2.0 * PI) * np as f32) as usize).min(np - 1);
+    it * np + ip
+}
+
+/// Reflection is reciprocal, f(wo, wi) = f(wi, wo); refraction through a rough interface
+/// obeys the generalised form f(wo → wi; η) = f(wi → wo; 1/η) / η² for radiance.
+#[test]
+fn reciprocity() {
+    let key = hash_key(&[3]);
+    for b in smooth_lobed() {
+        for i in 0..2000 {
+            let mut s = SampleStream::new(key, i);
+            let a = cosine_hemisphere(s.next_2d());
+            let c = cosine_hemisphere(s.next_2d());
+            let (fa, fb) = (b.eval(a, c), b.eval(c, a));
+            assert!((fa - fb).abs().max_element() <= 3e-3 * fa.max_element().max(1.0));
+            if let Bsdf::RoughDielectric(d) = b {
+                let below = Vec3A::new(c.x, c.y, -c.z);
+                let back = RoughDielectric {
+                    eta: 1.0 / d.eta,
+                    ..d
+                };
+                let f = d.eval(a, below);
+                let g = back.eval(c, Vec3A::new(a.x, a.y, -a.z));
+                let expect = f * d.eta * d.eta;
+                assert!(
+                    (g - expect).abs().max_element() <= 3e-3 * expect.max_element().max(1e-3),
+                    "{d:?}: {g} vs {expect} at {a} {c}"
+                );
+            }
+        }
+    }
+}
+
+/// Smooth glass: reflection and refraction probabilities sum to 1 at every angle, and the
+/// refracted weight is the radiance scaling 1/η² (so importance R + T = 1).
+#[test]
+fn smooth_glass_reflects_plus_transmits_one() {
+    for eta in [1.5f32, 1.0 / 1.5, 2.419] {
+        let b = Bsdf::Dielectric {
+            eta,
+            r: Vec3A::ONE,
+            t: Vec3A::ONE,
+        };
+        for k in 0..50 {
+            let th = k as f32 / 50.0 * 1.55;
+            let wo = Vec3A::new(th.sin(), 0.0, th.cos());
+            let r = b.sample(wo, 0.0, [0.5; 2]).unwrap();
+            let t = b.sample(wo, 0.999_999, [0.5; 2]).unwrap();
+            assert!(r.delta && r.wi.z > 0.0 && (r.weight - Vec3A::ONE).length() < 1e-6);
+            let total = if t.wi.z < 0.0 {
+                // Snell: sin θt = sin θi / η, and the weight is 1/η².
+                let sin_t = (t.wi.x * t.wi.x + t.wi.y * t.wi.y).sqrt();
+                assert!((sin_t * eta - th.sin()).abs() < 1e-4);
+                assert!((t.weight.x * eta * eta - 1.0).abs() < 1e-5);
+                r.pdf + t.pdf
+            } else {
+                // Total internal reflection: both picks reflect.
+                assert!(eta < 1.0 && th.sin() > eta);
+                r.pdf
+            };
+            assert!((total - 1.0).abs() < 1e-6, "eta {eta}, θ {th}: {total}");
+        }
+    }
+    // A thin pane: light passes undeflected, R + T = 1, and R exceeds one interface's.
+    let pane = Bsdf::ThinDielectric {
+        eta: 1.5,
+        r: Vec3A::ONE,
+        t: Vec3A::ONE,
+    };
+    let wo = Vec3A::new(0.6, 0.0, 0.8);
+    let r = pane.sample(wo, 0.0, [0.5; 2]).unwrap();
+    let t = pane.sample(wo, 0.999_999, [0.5; 2]).unwrap();
+    assert_eq!(t.wi, -wo);
+    assert!((r.pdf + t.pdf - 1.0).abs() < 1e-6);
+    assert!(r.pdf > fresnel_dielectric(0.8, 1.5));
+}
+
+#[test]
+fn diffuse_albedo_is_exact() {
+    let b = Bsdf::Diffuse {
+        reflectance: Vec3A::new(0.3, 0.6, 0.9),
+    };
+    let s = b.sample(Vec3A::Z, 0.5, [0.3, 0.7]).unwrap();
+    assert!((s.weight - Vec3A::new(0.3, 0.6, 0.9)).abs().max_element() < 1e-5);
+}
