@@ -257,12 +257,36 @@ fn fov_axis_converts_to_vertical_fov_like_mitsuba() {
     }
     assert!((mitsuba_vertical_fov(40.0, "y", 2.0).unwrap() - 40.0).abs() < 1e-9);
     assert!(mitsuba_vertical_fov(40.0, "z", 2.0).is_none());
-    // No fov: Mitsuba's 50 mm lens on 36 mm film, 39.6° across x; 768×576 film by default.
+    // No fov: Mitsuba's 50 mm lens on 35 mm film, along the 43.27 mm diagonal; 768×576 film
+    // by default. The x angles are Mitsuba 3.9.1's own `x_fov` for these films.
     let s = load("<sensor type=\"perspective\"/><emitter type=\"constant\"/>").unwrap();
     let c = s.camera.unwrap();
     assert_eq!((c.width, c.height), (768, 576));
     let x = 2.0 * ((c.fov_deg as f64 / 2.0).to_radians().tan() * 768.0 / 576.0).atan();
-    assert!((x.to_degrees() - 39.59775).abs() < 1e-3);
+    assert!(
+        (x.to_degrees() - 38.184_84).abs() < 1e-3,
+        "{}",
+        x.to_degrees()
+    );
+    for (w, h, lens, x_fov) in [
+        (64, 64, "", 34.022_06),
+        (100, 50, "", 42.311_72),
+        (768, 576, "35mm", 52.622_54),
+    ] {
+        let lens = if lens.is_empty() {
+            String::new()
+        } else {
+            format!("<string name=\"focal_length\" value=\"{lens}\"/>")
+        };
+        let s = load(&format!("<sensor type=\"perspective\">{lens}<film type=\"hdrfilm\"><integer name=\"width\" value=\"{w}\"/><integer name=\"height\" value=\"{h}\"/></film></sensor><emitter type=\"constant\"/>")).unwrap();
+        let v = s.camera.unwrap().fov_deg as f64;
+        let x = 2.0 * ((v / 2.0).to_radians().tan() * w as f64 / h as f64).atan();
+        assert!(
+            (x.to_degrees() - x_fov).abs() < 1e-3,
+            "{w}x{h} {lens}: {}",
+            x.to_degrees()
+        );
+    }
 }
 
 #[test]

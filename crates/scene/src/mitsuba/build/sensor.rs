@@ -100,7 +100,8 @@ impl<'t> Builder<'t> {
                 }
             }
             (None, focal) => {
-                // Mitsuba: a 35 mm film (36 mm wide) with a 50 mm lens unless told otherwise.
+                // Mitsuba: a 50 mm lens unless told otherwise, on 35 mm film (36 × 24 mm),
+                // measured along the film's diagonal (`parse_fov` in Mitsuba's sensor.h).
                 let mm = match focal {
                     None => Some(50.0),
                     Some((at, Value::Str(s))) => {
@@ -125,7 +126,11 @@ impl<'t> Builder<'t> {
                         None
                     }
                 };
-                mm.and_then(|f| vertical_fov(2.0 * (18.0 / f).atan().to_degrees(), "x", aspect))
+                let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+                mm.and_then(|f| {
+                    let fov = 2.0 * (diagonal / (2.0 * f)).atan().to_degrees();
+                    vertical_fov(fov, "diagonal", aspect)
+                })
             }
         };
         self.finish(o);
