@@ -7,8 +7,9 @@
 //! scenes feed the same bytes. Floats feed their bits: −0.0 and 0.0 differ, which can only
 //! make a resume refuse, never mix scenes.
 use crate::{
-    Bitmap, Bsdf, Camera, CameraPath, FilterType, Image, Instance, Keyframe, Light, Material, Mesh,
-    Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform, WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light,
+    Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform,
+    WrapMode,
 };
 use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
 use sha2::{Digest, Sha256};
@@ -159,6 +160,7 @@ impl Feed for Scene {
             instances,
             lights,
             environment,
+            environment_map,
             render,
             camera_path,
             warnings: _,
@@ -170,6 +172,7 @@ impl Feed for Scene {
         instances.feed(h);
         lights.feed(h);
         environment.feed(h);
+        environment_map.feed(h);
         render.feed(h);
         camera_path.feed(h);
     }
@@ -285,14 +288,7 @@ impl Feed for Bitmap {
             to_uv,
         } = self;
         filename.to_string_lossy().feed(h);
-        let Image {
-            width,
-            height,
-            texels,
-        } = image.as_ref();
-        width.feed(h);
-        height.feed(h);
-        texels.feed(h);
+        image.as_ref().feed(h);
         raw.feed(h);
         tag(
             h,
@@ -310,6 +306,34 @@ impl Feed for Bitmap {
             },
         );
         to_uv.feed(h);
+    }
+}
+
+impl Feed for EnvironmentMap {
+    fn feed(&self, h: &mut Sha256) {
+        let EnvironmentMap {
+            filename,
+            image,
+            scale,
+            to_world,
+        } = self;
+        filename.to_string_lossy().feed(h);
+        image.as_ref().feed(h);
+        scale.feed(h);
+        to_world.to_cols_array().feed(h);
+    }
+}
+
+impl Feed for Image {
+    fn feed(&self, h: &mut Sha256) {
+        let Image {
+            width,
+            height,
+            texels,
+        } = self;
+        width.feed(h);
+        height.feed(h);
+        texels.feed(h);
     }
 }
 
@@ -375,6 +399,14 @@ impl Feed for Light {
                 intensity.feed(h);
                 cone_deg.feed(h);
                 falloff_deg.feed(h);
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                tag(h, 2);
+                direction.feed(h);
+                irradiance.feed(h);
             }
         }
     }

@@ -489,12 +489,12 @@ fn dielectric_is_reported_at_its_bsdf() {
 }
 
 #[test]
-fn envmap_is_reported_at_its_emitter() {
+fn a_missing_envmap_file_is_reported_at_its_filename() {
     expect_errors(
         "sky-envmap.xml",
         &[(
-            "<emitter type=\"envmap\"",
-            &["<emitter type=\"envmap\">", "unsupported"],
+            "value=\"skies/kloppenheim_06_4k.exr\"",
+            &["kloppenheim_06_4k.exr", "does not exist"],
         )],
     );
 }

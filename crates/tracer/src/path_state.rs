@@ -141,14 +141,14 @@ impl PathState {
     /// The ray left the scene: the environment, weighted against light sampling.
     #[inline]
     pub fn escape(&mut self, lights: &LightSet) {
-        let Some(env) = lights.env else { return };
+        let Some(env) = &lights.env else { return };
         let w = match self.prev {
             Origin::Camera => 1.0,
             Origin::Sampled { pdf } => {
-                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n))
+                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n, self.d))
             }
         };
-        let c = self.beta * env * w;
+        let c = self.beta * env.radiance(self.d) * w;
         if self.depth > 0 {
             self.add_through_later_vertex(c);
         } else {
