@@ -211,10 +211,15 @@ impl LatLong {
         }
         let (sin_p, cos_p) = (2.0 * PI * mu).sin_cos();
         let local = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
-        Some(EnvSample {
-            wi: (self.to_world * local).normalize(),
-            li: self.lookup(mu, v),
-            pdf: pdf / (2.0 * PI * PI * sin_t),
+        let wi = (self.to_world * local).normalize();
+        // Radiance and density as a ray escaping along `wi` will see them (rounding in the
+        // round trip can move a direction across a cell's edge; MIS needs the same numbers).
+        let (u, v, sin_t) = self.uv(wi);
+        let pdf = self.pdf_uv(u, v, sin_t);
+        (pdf > 0.0).then(|| EnvSample {
+            wi,
+            li: self.lookup(u, v),
+            pdf,
         })
     }
 }
