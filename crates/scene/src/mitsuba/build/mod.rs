@@ -11,6 +11,7 @@ use std::collections::{HashMap, HashSet};
 
 mod bsdf;
 mod emitter;
+mod integrator;
 mod params;
 mod sensor;
 mod shape;
