@@ -58,6 +58,47 @@ fn scene_format_example_loads_and_renders() {
 }
 
 #[test]
+fn scene_format_sky_example_loads_and_renders() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md"))
+        .unwrap();
+    let example = fenced_toml(&doc)
+        .into_iter()
+        .find(|t| t.contains("map = "))
+        .expect("the environment-map example");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("skies")).unwrap();
+    // An 8 × 4 Radiance HDR sky in the flat (not run-length) form: brighter at the top.
+    let mut hdr = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n".to_vec();
+    for row in 0..4u8 {
+        for _ in 0..8 {
+            hdr.extend_from_slice(&[200 - 40 * row, 210 - 40 * row, 250 - 40 * row, 128]);
+        }
+    }
+    std::fs::write(dir.path().join("skies/sky.hdr"), hdr).unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, &example).unwrap();
+    let s = eyeadapt_scene::load_scene(&scene)
+        .unwrap_or_else(|e| panic!("documented example fails:\n{e}"));
+    let map = s.environment_map.as_ref().expect("an environment map");
+    assert_eq!((map.image.width, map.image.height), (8, 4));
+    assert!(
+        map.image.texels[0].x > map.image.texels[31].x,
+        "top row brighter"
+    );
+    assert!(matches!(
+        s.lights[0],
+        eyeadapt_scene::Light::Directional { direction, .. } if (direction.length() - 1.0).abs() < 1e-6
+    ));
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .args(["render", scene.to_str().unwrap(), "--spp", "2"])
+        .args(["--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
 fn job_format_example_parses() {
     let src = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),

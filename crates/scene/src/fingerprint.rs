@@ -8,9 +8,9 @@
 //! make a resume refuse, never mix scenes.
 use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
-    Bitmap, Bsdf, Camera, CameraPath, Distribution, FilterType, Image, Instance, Keyframe, Light,
-    Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform,
-    WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, Distribution, EnvironmentMap, FilterType, Image, Instance,
+    Keyframe, Light, Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene,
+    Texture, Transform, WrapMode,
 };
 use crate::{Interpolation, Track};
 use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -162,6 +162,7 @@ impl Feed for Scene {
             instances,
             lights,
             environment,
+            environment_map,
             render,
             camera_path,
             warnings: _,
@@ -174,6 +175,7 @@ impl Feed for Scene {
         instances.feed(h);
         lights.feed(h);
         environment.feed(h);
+        environment_map.feed(h);
         render.feed(h);
         camera_path.feed(h);
         animation.as_deref().feed(h);
@@ -449,14 +451,7 @@ impl Feed for Bitmap {
             to_uv,
         } = self;
         filename.to_string_lossy().feed(h);
-        let Image {
-            width,
-            height,
-            texels,
-        } = image.as_ref();
-        width.feed(h);
-        height.feed(h);
-        texels.feed(h);
+        image.as_ref().feed(h);
         raw.feed(h);
         tag(
             h,
@@ -474,6 +469,34 @@ impl Feed for Bitmap {
             },
         );
         to_uv.feed(h);
+    }
+}
+
+impl Feed for EnvironmentMap {
+    fn feed(&self, h: &mut Sha256) {
+        let EnvironmentMap {
+            filename,
+            image,
+            scale,
+            to_world,
+        } = self;
+        filename.to_string_lossy().feed(h);
+        image.as_ref().feed(h);
+        scale.feed(h);
+        to_world.to_cols_array().feed(h);
+    }
+}
+
+impl Feed for Image {
+    fn feed(&self, h: &mut Sha256) {
+        let Image {
+            width,
+            height,
+            texels,
+        } = self;
+        width.feed(h);
+        height.feed(h);
+        texels.feed(h);
     }
 }
 
@@ -539,6 +562,14 @@ impl Feed for Light {
                 intensity.feed(h);
                 cone_deg.feed(h);
                 falloff_deg.feed(h);
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                tag(h, 2);
+                direction.feed(h);
+                irradiance.feed(h);
             }
         }
     }

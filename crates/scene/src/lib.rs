@@ -3,7 +3,8 @@
 //! A [`Scene`] is loaded from a TOML file by [`load_scene`] (format: `docs/scene-format.md`).
 //! It owns triangle [`Mesh`]es in object space placed by [`Instance`]s, [`Material`]s
 //! referenced by [`MaterialId`] whose parameters are constants or [`Texture`]s ([`Param`]),
-//! delta [`Light`]s (point and spot), an optional constant environment, the [`Camera`] and an
+//! delta [`Light`]s (point, spot and directional), an optional constant environment and
+//! [`EnvironmentMap`], the [`Camera`] and an
 //! optional [`CameraPath`] (keyframes that [`CameraPath::sample`] turns into a [`CameraPose`]).
 //! Quads, boxes and spheres are tessellated at load time; OBJ files come in through `tobj`.
 //! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
@@ -21,6 +22,7 @@ mod camera_motion;
 mod camera_path;
 mod camera_track;
 mod diagnostic;
+mod environment;
 mod fingerprint;
 pub mod gltf;
 mod image_file;
@@ -46,6 +48,7 @@ pub use crate::camera_motion::{CameraMotion, DEFAULT_FPS, MAX_FRAMES};
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
+pub use crate::environment::{EnvironmentMap, check_lat_long, rotation_part};
 pub use crate::image_file::{ImageCache, load_image, srgb_to_linear};
 pub use crate::input_file::{check_input, is_bad_input, open_input, read_input, read_input_text};
 pub use crate::instance::Instance;

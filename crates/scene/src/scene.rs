@@ -1,8 +1,8 @@
 //! The loaded scene: plain data for the tracer, whatever front-end (TOML, Mitsuba XML) read it.
 use crate::gltf::SceneAnimation;
 use crate::{
-    Camera, CameraPath, Diagnostic, Instance, Light, Material, MaterialId, Mesh, MeshId, Rgb,
-    Texture, TextureId, Transform,
+    Camera, CameraPath, Diagnostic, EnvironmentMap, Instance, Light, Material, MaterialId, Mesh,
+    MeshId, Rgb, Texture, TextureId, Transform,
 };
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -34,6 +34,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Constant environment radiance seen by rays that leave the scene.
     pub environment: Option<Rgb>,
+    /// An environment map seen by rays that leave the scene (added to `environment`).
+    pub environment_map: Option<EnvironmentMap>,
     pub render: RenderDefaults,
     /// The scene's own camera path, already validated.
     pub camera_path: Option<CameraPath>,
@@ -86,6 +88,16 @@ impl Scene {
     /// Triangles stored: each unique mesh once.
     pub fn unique_triangle_count(&self) -> usize {
         self.meshes.iter().map(Mesh::triangle_count).sum()
+    }
+
+    /// True when some light, emissive material or environment can light the scene.
+    pub fn has_light_source(&self) -> bool {
+        self.has_emissive_instance()
+            || !self.lights.is_empty()
+            || self.environment.is_some_and(|e| e.max_element() > 0.0)
+            || self.environment_map.as_ref().is_some_and(|m| {
+                m.scale > 0.0 && m.image.texels.iter().any(|t| t.max_element() > 0.0)
+            })
     }
 
     /// True when some instance's material emits.

@@ -2,9 +2,9 @@
 //! never mix outputs of different scenes), and only then.
 use eyeadapt_scene::gltf::{Node, NodeTracks, NodeTree, Rest, SceneAnimation};
 use eyeadapt_scene::{
-    Bitmap, Bsdf, Camera, CameraPath, Distribution, FilterType, Image, Instance, Keyframe, Light,
-    Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb,
-    Scene, Texture, TextureId, Transform, WrapMode,
+    Bitmap, Bsdf, Camera, CameraPath, Distribution, EnvironmentMap, FilterType, Image, Instance,
+    Keyframe, Light, Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter,
+    RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
 };
 use eyeadapt_scene::{Interpolation, Track};
 use glam::{Affine2, DMat4, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -101,8 +101,22 @@ fn full() -> Scene {
                 cone_deg: 30.0,
                 falloff_deg: 20.0,
             },
+            Light::Directional {
+                direction: -Vec3::Y,
+                irradiance: Rgb::ONE,
+            },
         ],
         environment: Some(Rgb::splat(0.1)),
+        environment_map: Some(EnvironmentMap {
+            filename: "sky.exr".into(),
+            image: std::sync::Arc::new(Image {
+                width: 2,
+                height: 1,
+                texels: vec![Rgb::ONE, Rgb::splat(2.0)],
+            }),
+            scale: 1.0,
+            to_world: glam::Mat3::IDENTITY,
+        }),
         render: RenderDefaults {
             spp: Some(16),
             max_depth: Some(8),
@@ -353,6 +367,32 @@ fn changes() -> Vec<(&'static str, Change)> {
             if let Light::Spot { falloff_deg, .. } = &mut s.lights[1] {
                 *falloff_deg = 21.0;
             }
+        }),
+        ("sun.direction", |s| {
+            if let Light::Directional { direction, .. } = &mut s.lights[2] {
+                *direction = -Vec3::Z;
+            }
+        }),
+        ("sun.irradiance", |s| {
+            if let Light::Directional { irradiance, .. } = &mut s.lights[2] {
+                *irradiance = Rgb::splat(2.0);
+            }
+        }),
+        ("environment_map", |s| s.environment_map = None),
+        ("environment_map.filename", |s| {
+            s.environment_map.as_mut().unwrap().filename = "other.exr".into()
+        }),
+        ("environment_map.texels", |s| {
+            let m = s.environment_map.as_mut().unwrap();
+            let mut img = (*m.image).clone();
+            img.texels[1] = Rgb::splat(3.0);
+            m.image = std::sync::Arc::new(img);
+        }),
+        ("environment_map.scale", |s| {
+            s.environment_map.as_mut().unwrap().scale = 2.0
+        }),
+        ("environment_map.to_world", |s| {
+            s.environment_map.as_mut().unwrap().to_world = glam::Mat3::from_rotation_y(1.0)
         }),
         ("environment", |s| s.environment = None),
         ("environment value", |s| {

@@ -265,12 +265,36 @@ fn fov_axis_converts_to_vertical_fov_like_mitsuba() {
     }
     assert!((mitsuba_vertical_fov(40.0, "y", 2.0).unwrap() - 40.0).abs() < 1e-9);
     assert!(mitsuba_vertical_fov(40.0, "z", 2.0).is_none());
-    // No fov: Mitsuba's 50 mm lens on 36 mm film, 39.6° across x; 768×576 film by default.
+    // No fov: Mitsuba's 50 mm lens on 35 mm film, along the 43.27 mm diagonal; 768×576 film
+    // by default. The x angles are Mitsuba 3.9.1's own `x_fov` for these films.
     let s = load("<sensor type=\"perspective\"/><emitter type=\"constant\"/>").unwrap();
     let c = s.camera.unwrap();
     assert_eq!((c.width, c.height), (768, 576));
     let x = 2.0 * ((c.fov_deg as f64 / 2.0).to_radians().tan() * 768.0 / 576.0).atan();
-    assert!((x.to_degrees() - 39.59775).abs() < 1e-3);
+    assert!(
+        (x.to_degrees() - 38.184_84).abs() < 1e-3,
+        "{}",
+        x.to_degrees()
+    );
+    for (w, h, lens, x_fov) in [
+        (64, 64, "", 34.022_06),
+        (100, 50, "", 42.311_72),
+        (768, 576, "35mm", 52.622_54),
+    ] {
+        let lens = if lens.is_empty() {
+            String::new()
+        } else {
+            format!("<string name=\"focal_length\" value=\"{lens}\"/>")
+        };
+        let s = load(&format!("<sensor type=\"perspective\">{lens}<film type=\"hdrfilm\"><integer name=\"width\" value=\"{w}\"/><integer name=\"height\" value=\"{h}\"/></film></sensor><emitter type=\"constant\"/>")).unwrap();
+        let v = s.camera.unwrap().fov_deg as f64;
+        let x = 2.0 * ((v / 2.0).to_radians().tan() * w as f64 / h as f64).atan();
+        assert!(
+            (x.to_degrees() - x_fov).abs() < 1e-3,
+            "{w}x{h} {lens}: {}",
+            x.to_degrees()
+        );
+    }
 }
 
 #[test]
@@ -462,12 +486,12 @@ fn a_missing_texture_file_is_reported_at_its_filename() {
 }
 
 #[test]
-fn envmap_is_reported_at_its_emitter() {
+fn a_missing_envmap_file_is_reported_at_its_filename() {
     expect_errors(
         "sky-envmap.xml",
         &[(
-            "<emitter type=\"envmap\"",
-            &["<emitter type=\"envmap\">", "unsupported"],
+            "value=\"skies/kloppenheim_06_4k.exr\"",
+            &["kloppenheim_06_4k.exr", "does not exist"],
         )],
     );
 }
@@ -889,4 +913,60 @@ fn instances_share_the_meshes_of_their_shapegroup() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("test.xml:2:") && e.contains("nope"), "{e}");
+}
+
+#[test]
+fn direct_and_wrapped_integrators_render_with_the_path_tracer() {
+    let scene = |integrator: &str| {
+        load(&format!(
+            "{integrator}<shape type=\"sphere\"/><emitter type=\"constant\"/>"
+        ))
+    };
+    let s = scene("<integrator type=\"direct\"/>").unwrap();
+    assert_eq!(s.render.max_depth, Some(2));
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let s = scene("<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"0\"/><integer name=\"bsdf_samples\" value=\"4\"/></integrator>").unwrap();
+    assert_eq!(s.render.max_depth, Some(2));
+    assert!(
+        s.warnings[0].message.contains("emitter sampling on"),
+        "{:?}",
+        s.warnings
+    );
+    for (kind, inner_depth) in [("moment", 3), ("aov", 4)] {
+        let s = scene(&format!(
+            "<integrator type=\"{kind}\"><string name=\"aovs\" value=\"dd.y:depth\"/><integrator type=\"path\"><integer name=\"max_depth\" value=\"{inner_depth}\"/></integrator></integrator>"
+        ));
+        let s = match (kind, s) {
+            // `moment` has no `aovs` parameter in Mitsuba either: it is left unread.
+            ("moment", Err(e)) => {
+                assert!(e.to_string().contains("aovs"), "{e}");
+                continue;
+            }
+            (_, s) => s.unwrap(),
+        };
+        assert_eq!(s.render.max_depth, Some(inner_depth));
+        assert!(
+            s.warnings[0]
+                .message
+                .contains(&format!("<integrator type=\"{kind}\">")),
+            "{:?}",
+            s.warnings
+        );
+    }
+    let s =
+        scene("<integrator type=\"moment\"><integrator type=\"direct\"/></integrator>").unwrap();
+    assert_eq!(s.render.max_depth, Some(2));
+    let s = scene(
+        "<integrator type=\"ptracer\"><integer name=\"max_depth\" value=\"5\"/></integrator>",
+    )
+    .unwrap();
+    assert_eq!(s.render.max_depth, Some(5));
+    assert!(s.warnings[0].message.contains("ptracer"));
+    let e = scene("<integrator type=\"volpath\"/>")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unsupported <integrator type=\"volpath\">"),
+        "{e}"
+    );
 }

@@ -1,5 +1,5 @@
 //! What emits light, as the light set stores it: emissive triangles (and the parallelograms two
-//! of them may form), point and spot lights. Shared by [`crate::lights`] (sampling) and
+//! of them may form), point, spot and directional lights. Shared by [`crate::lights`] (sampling) and
 //! [`crate::light_pick`] (choosing which light a point samples).
 use glam::Vec3A;
 
@@ -44,19 +44,69 @@ pub enum DeltaLight {
         cone: f32,
         inv_transition: f32,
     },
+    /// Parallel light travelling along `direction` (unit), from infinitely far away.
+    Directional {
+        direction: Vec3A,
+        irradiance: Vec3A,
+    },
+}
+
+/// Light arriving at a point from a delta light.
+#[derive(Clone, Copy, Debug)]
+pub struct Arrival {
+    /// Unit direction towards the light.
+    pub wi: Vec3A,
+    /// Distance to it (∞ for a directional light).
+    pub dist: f32,
+    /// Irradiance on a surface facing it: intensity / d², or a directional light's own.
+    pub li: Vec3A,
 }
 
 impl DeltaLight {
-    pub fn position(&self) -> Vec3A {
+    /// The light's colour: intensity, or a directional light's irradiance.
+    pub fn colour(&self) -> Vec3A {
         match *self {
-            DeltaLight::Point { position, .. } | DeltaLight::Spot { position, .. } => position,
+            DeltaLight::Point { intensity, .. } | DeltaLight::Spot { intensity, .. } => intensity,
+            DeltaLight::Directional { irradiance, .. } => irradiance,
         }
     }
 
-    /// Radiant intensity towards direction `w` (unit, leaving the light).
-    pub fn intensity(&self, w: Vec3A) -> Vec3A {
+    /// What arrives at `x`; `None` at the light's own position.
+    #[inline]
+    pub fn arrival(&self, x: Vec3A) -> Option<Arrival> {
+        let position = match *self {
+            DeltaLight::Point { position, .. } | DeltaLight::Spot { position, .. } => position,
+            DeltaLight::Directional {
+                direction,
+                irradiance,
+            } => {
+                return Some(Arrival {
+                    wi: -direction,
+                    dist: f32::INFINITY,
+                    li: irradiance,
+                });
+            }
+        };
+        let d = position - x;
+        let d2 = d.length_squared();
+        let dist = d2.sqrt();
+        if dist <= 0.0 {
+            return None;
+        }
+        let wi = d / dist;
+        Some(Arrival {
+            wi,
+            dist,
+            li: self.intensity(-wi) / d2,
+        })
+    }
+
+    /// Radiant intensity towards direction `w` (unit, leaving the light); a directional
+    /// light's irradiance.
+    fn intensity(&self, w: Vec3A) -> Vec3A {
         match *self {
             DeltaLight::Point { intensity, .. } => intensity,
+            DeltaLight::Directional { irradiance, .. } => irradiance,
             DeltaLight::Spot {
                 direction,
                 intensity,

@@ -227,9 +227,10 @@ fn summarize(total: &Partial) -> EyeEstimate {
 }
 
 /// Each light's share of the sensor's direct term Φ_direct (estimators.md §4, `dominant_by =
-/// eye`): (emission or intensity colour, luminance of its direct contribution). Area lights
-/// are grouped by emission colour, like [`crate::LightSet::fluxes`]; point and spot lights are
-/// exact, area lights use `samples` stratified points per group.
+/// eye`): (emission, intensity, irradiance or mean environment colour, luminance of its direct
+/// contribution). Area lights are grouped by emission colour, like [`crate::LightSet::fluxes`];
+/// point, spot and directional lights are exact, area lights and the environment use
+/// `samples` stratified points or directions each.
 pub fn eye_direct_per_light(
     scene: &SceneData,
     view: &View,
@@ -284,26 +285,33 @@ pub fn eye_direct_per_light(
         out.push((*emission, sum * *total_area as f64 / samples.max(1) as f64));
     }
     for l in &lights.deltas {
-        let d = l.position() - eye;
-        let d2 = d.length_squared();
-        let wi = d / d2.sqrt();
-        let kern = (1.0 + wi.dot(axis)) * 0.25;
-        let i = l.intensity(-wi);
-        let colour = match *l {
-            crate::emitter::DeltaLight::Point { intensity, .. }
-            | crate::emitter::DeltaLight::Spot { intensity, .. } => intensity,
+        let v = match l.arrival(eye) {
+            Some(a) => {
+                let kern = (1.0 + a.wi.dot(axis)) * 0.25;
+                if kern > 0.0 && visible(scene, &mut scratch, eye, a.wi, a.dist) {
+                    (luminance(a.li) * kern) as f64
+                } else {
+                    0.0
+                }
+            }
+            None => 0.0,
         };
-        let v = if kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
-            (luminance(i) * kern / d2) as f64
-        } else {
-            0.0
-        };
-        out.push((colour, v));
+        out.push((l.colour(), v));
     }
-    if let Some(env) = lights.env {
-        // A constant environment's direct term is π·L scaled by its visible fraction; use the
-        // unoccluded value as an upper bound (documented: environments rarely compete here).
-        out.push((env, std::f64::consts::PI * luminance(env) as f64));
+    if let Some(env) = &lights.env {
+        // The environment's directions drawn from its own density, each seen unless occluded.
+        let key = hash_key(&[seed, 0xD0_0042]);
+        let mut sum = 0.0f64;
+        for i in 0..samples {
+            let Some(s) = env.sample(SampleStream::new(key, i).next_2d()) else {
+                continue;
+            };
+            let kern = (1.0 + s.wi.dot(axis)) * 0.25;
+            if kern > 0.0 && visible(scene, &mut scratch, eye, s.wi, f32::INFINITY) {
+                sum += (luminance(s.li) * kern / s.pdf) as f64;
+            }
+        }
+        out.push((env.mean(), sum / samples.max(1) as f64));
     }
     out
 }

@@ -12,7 +12,9 @@ mod accel;
 mod bsdf;
 mod bvh_bench;
 mod dielectric;
+mod distribution2d;
 mod emitter;
+mod envmap;
 mod eye;
 mod film;
 mod geometry;
@@ -32,7 +34,9 @@ mod triangle;
 pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
 pub use crate::bvh_bench::ObvhsBuildInput;
+pub use crate::distribution2d::Distribution2D;
 pub use crate::emitter::luminance;
+pub use crate::envmap::{EnvSample, Environment};
 pub use crate::eye::{
     EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
     sample_cardioid,

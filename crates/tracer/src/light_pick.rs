@@ -1,8 +1,8 @@
 //! Which light next-event estimation samples from a given shading point.
 //!
 //! The choosable *units* are: each quad light (two emissive triangles paired into a
-//! parallelogram), each remaining emissive triangle, each point or spot light, and the constant
-//! environment.
+//! parallelogram), each remaining emissive triangle, each point, spot or directional light, and
+//! the environment (weighted by its mean radiance).
 //!
 //! With few units (2 ..= [`SPATIAL_MAX_UNITS`]) the choice depends on the receiving point: each
 //! unit is weighted by a conservative estimate of the irradiance it can deliver there — its
@@ -91,6 +91,7 @@ impl LightPicker {
         env: Option<Vec3A>,
         scene_radius: f32,
     ) -> LightPicker {
+        let r = scene_radius.max(1e-3);
         let mut units = Vec::new();
         let mut bounds = Vec::new();
         let mut weights: Vec<f64> = Vec::new();
@@ -145,10 +146,13 @@ impl LightPicker {
                 } => {
                     2.0 * PI * (1.0 - 0.5 * (cos_cone + cos_falloff)) * weight_luminance(intensity)
                 }
+                // What crosses the scene's bounding disc.
+                DeltaLight::Directional { irradiance, .. } => {
+                    PI * r * r * weight_luminance(irradiance)
+                }
             } as f64);
         }
         if let Some(e) = env {
-            let r = scene_radius.max(1e-3);
             units.push(Unit::Env);
             bounds.push(Bounds::Env {
                 luminance: weight_luminance(e),
@@ -285,20 +289,17 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
             power * cos_e.max(1e-3) * cos_r.max(1e-3) / d2.max(radius * radius).max(1e-12)
         }
         Bounds::Delta(l) => {
-            let to = l.position() - x;
-            let d2 = to.length_squared();
-            if d2 <= 0.0 {
+            let Some(a) = l.arrival(x) else {
                 return 0.0;
-            }
-            let wi = to / d2.sqrt();
+            };
             let cos_r = match n {
-                Some(n) => wi.dot(n),
+                Some(n) => a.wi.dot(n),
                 None => 1.0,
             };
-            if cos_r <= 0.0 {
+            if cos_r <= 0.0 || a.li.max_element() <= 0.0 {
                 return 0.0;
             }
-            weight_luminance(l.intensity(-wi)) * cos_r / d2
+            weight_luminance(a.li) * cos_r
         }
         Bounds::Env { luminance } => match n {
             Some(_) => PI * luminance,

@@ -1,7 +1,8 @@
-//! Every light source, for next-event estimation: emissive triangles, point and spot lights
-//! and the constant environment ([`crate::emitter`]); [`crate::light_pick`] chooses which one a
-//! shading point samples.
+//! Every light source, for next-event estimation: emissive triangles, point, spot and
+//! directional lights ([`crate::emitter`]) and the environment ([`crate::envmap`]);
+//! [`crate::light_pick`] chooses which one a shading point samples.
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
+use crate::envmap::Environment;
 use crate::light_pick::{LightPicker, Unit};
 use eyeadapt_scene::Light;
 use glam::Vec3A;
@@ -27,7 +28,7 @@ pub struct LightSet {
     quad_of: Vec<u32>,
     quads: Vec<Parallelogram>,
     pub deltas: Vec<DeltaLight>,
-    pub env: Option<Vec3A>,
+    pub env: Option<Environment>,
     /// Chooses among quads, lone triangles, deltas and the environment.
     picker: LightPicker,
     /// For each area triangle, its unit in `picker`.
@@ -40,7 +41,7 @@ impl LightSet {
     pub fn build(
         area: Vec<AreaTri>,
         lights: &[Light],
-        env: Option<Vec3A>,
+        env: Option<Environment>,
         scene_radius: f32,
     ) -> LightSet {
         let deltas: Vec<DeltaLight> = lights
@@ -72,10 +73,16 @@ impl LightSet {
                         inv_transition: 1.0 / (cone - fall).max(1e-6),
                     }
                 }
+                Light::Directional {
+                    direction,
+                    irradiance,
+                } => DeltaLight::Directional {
+                    direction: direction.normalize().into(),
+                    irradiance: irradiance.into(),
+                },
             })
             .collect();
         let (quad_of, quads) = pair_parallelograms(&area);
-        let env = env.filter(|e| e.max_element() > 0.0);
         LightSet::assemble(area, quad_of, quads, deltas, env, scene_radius)
     }
 
@@ -84,10 +91,11 @@ impl LightSet {
         quad_of: Vec<u32>,
         quads: Vec<Parallelogram>,
         deltas: Vec<DeltaLight>,
-        env: Option<Vec3A>,
+        env: Option<Environment>,
         scene_radius: f32,
     ) -> LightSet {
-        let picker = LightPicker::build(&area, &quad_of, &quads, &deltas, env, scene_radius);
+        let env_mean = env.as_ref().map(Environment::mean);
+        let picker = LightPicker::build(&area, &quad_of, &quads, &deltas, env_mean, scene_radius);
         let mut unit_of = vec![u32::MAX; area.len()];
         for (k, u) in picker.units.iter().enumerate() {
             if let Unit::Area { first, quad } = *u {
@@ -145,13 +153,12 @@ impl LightSet {
         self.picker.prob(unit, x, n) / self.unit_area(first) * d2 / cos_l
     }
 
-    /// Solid-angle density with which [`LightSet::sample`] at `x` (normal `n`) picks a
-    /// direction to the environment.
-    pub fn pdf_env(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
-        if self.env.is_some() {
-            self.picker.prob(self.picker.units.len() - 1, x, n) / (4.0 * PI)
-        } else {
-            0.0
+    /// Solid-angle density with which [`LightSet::sample`] at `x` (normal `n`) picks
+    /// direction `d` to the environment.
+    pub fn pdf_env(&self, x: Vec3A, n: Option<Vec3A>, d: Vec3A) -> f32 {
+        match &self.env {
+            Some(env) => self.picker.prob(self.picker.units.len() - 1, x, n) * env.pdf(d),
+            None => 0.0,
         }
     }
 
@@ -197,32 +204,22 @@ impl LightSet {
                 })
             }
             Unit::Delta(j) => {
-                let l = &self.deltas[j as usize];
-                let d = l.position() - x;
-                let d2 = d.length_squared();
-                let dist = d2.sqrt();
-                if dist <= 0.0 {
-                    return None;
-                }
-                let wi = d / dist;
+                let a = self.deltas[j as usize].arrival(x)?;
                 Some(LightSample {
-                    wi,
-                    dist,
-                    li: l.intensity(-wi) / d2,
+                    wi: a.wi,
+                    dist: a.dist,
+                    li: a.li,
                     pdf: p,
                     delta: true,
                 })
             }
             Unit::Env => {
-                let env = self.env?;
-                let z = 1.0 - 2.0 * u[0];
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = 2.0 * PI * u[1];
+                let s = self.env.as_ref()?.sample(u)?;
                 Some(LightSample {
-                    wi: Vec3A::new(r * phi.cos(), r * phi.sin(), z),
+                    wi: s.wi,
                     dist: f32::INFINITY,
-                    li: env,
-                    pdf: p / (4.0 * PI),
+                    li: s.li,
+                    pdf: p * s.pdf,
                     delta: false,
                 })
             }
@@ -247,15 +244,10 @@ impl LightSet {
         }
         let first_delta = self.picker.units.len() - self.deltas.len() - self.env.is_some() as usize;
         for (k, d) in self.deltas.iter().enumerate() {
-            let intensity = match *d {
-                DeltaLight::Point { intensity, .. } | DeltaLight::Spot { intensity, .. } => {
-                    intensity
-                }
-            };
-            out.push((intensity, self.picker.power(first_delta + k)));
+            out.push((d.colour(), self.picker.power(first_delta + k)));
         }
-        if let Some(e) = self.env {
-            out.push((e, self.picker.power(self.picker.units.len() - 1)));
+        if let Some(e) = &self.env {
+            out.push((e.mean(), self.picker.power(self.picker.units.len() - 1)));
         }
         out
     }

@@ -160,14 +160,14 @@ impl PathState {
     /// The ray left the scene: the environment, weighted against light sampling.
     #[inline]
     pub fn escape(&mut self, lights: &LightSet) {
-        let Some(env) = lights.env else { return };
+        let Some(env) = &lights.env else { return };
         let w = match self.prev {
             Origin::Camera => 1.0,
             Origin::Sampled { pdf } => {
-                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n))
+                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n, self.d))
             }
         };
-        let c = self.beta * env * w;
+        let c = self.beta * env.radiance(self.d) * w;
         if self.specular_chain {
             self.out.l += c;
         } else {

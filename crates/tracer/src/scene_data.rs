@@ -1,5 +1,6 @@
 //! The tracer's copy of a scene: geometry (two-level BVH), materials with their textures, light
 //! set. Built once per scene and shared read-only by every thread and frame.
+use crate::envmap::Environment;
 use crate::geometry::{Built, Geometry};
 use crate::lights::LightSet;
 use crate::material::Materials;
@@ -29,12 +30,11 @@ impl SceneData {
         );
         let center = (geometry.bounds_min + geometry.bounds_max) * 0.5;
         let radius = ((geometry.bounds_max - geometry.bounds_min).length() * 0.5).max(1e-3);
-        let lights = LightSet::build(
-            area_lights,
-            &scene.lights,
+        let env = Environment::new(
             scene.environment.map(Vec3A::from),
-            radius,
+            scene.environment_map.as_ref(),
         );
+        let lights = LightSet::build(area_lights, &scene.lights, env, radius);
         SceneData {
             geometry,
             materials,

@@ -136,6 +136,7 @@ pub struct LightDef {
     pub look_at: Option<V3>,
     pub direction: Option<V3>,
     pub intensity: Option<V3>,
+    pub irradiance: Option<V3>,
     pub cone_deg: Option<Spanned<f32>>,
     pub falloff_deg: Option<Spanned<f32>>,
 }
@@ -143,5 +144,9 @@ pub struct LightDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentDef {
-    pub radiance: V3,
+    pub radiance: Option<V3>,
+    /// A lat-long image file, relative to the scene file.
+    pub map: Option<Spanned<String>>,
+    pub scale: Option<Spanned<f32>>,
+    pub transform: Option<Spanned<TransformDef>>,
 }

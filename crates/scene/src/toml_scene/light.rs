@@ -1,4 +1,4 @@
-//! `[[lights]]`: point and spot lights.
+//! `[[lights]]`: point, spot and sun (directional) lights.
 use super::Ctx;
 use super::format::LightDef;
 use crate::Light;
@@ -9,6 +9,15 @@ impl Ctx<'_> {
         let d = l.get_ref();
         let at = l.span().start;
         let kind = d.kind.get_ref().as_str();
+        if kind == "sun" {
+            return self.sun(d, at);
+        }
+        if let Some(v) = &d.irradiance {
+            self.error(
+                v.span().start,
+                format!("{kind} light: key `irradiance` applies to a sun only (use `intensity`)"),
+            );
+        }
         let Some(pos) = &d.position else {
             self.error(at, format!("{kind} light needs a `position`"));
             return None;
@@ -76,9 +85,47 @@ impl Ctx<'_> {
                 })
             }
             other => {
-                self.error(d.kind.span().start, format!("unknown light type \"{other}\" (expected point or spot; area lights are emissive materials, the environment is [environment])"));
+                self.error(d.kind.span().start, format!("unknown light type \"{other}\" (expected point, spot or sun; area lights are emissive materials, the environment is [environment])"));
                 None
             }
         }
+    }
+
+    /// A directional light: `direction` (the way the light travels) and `irradiance`.
+    fn sun(&mut self, d: &LightDef, at: usize) -> Option<Light> {
+        for (key, v) in [
+            ("position", &d.position),
+            ("look_at", &d.look_at),
+            ("intensity", &d.intensity),
+        ] {
+            if let Some(v) = v {
+                self.error(
+                    v.span().start,
+                    format!("sun light: key `{key}` does not apply (a sun has `direction` and `irradiance`)"),
+                );
+            }
+        }
+        for (key, v) in [("cone_deg", &d.cone_deg), ("falloff_deg", &d.falloff_deg)] {
+            if let Some(v) = v {
+                self.error(
+                    v.span().start,
+                    format!("sun light: key `{key}` does not apply"),
+                );
+            }
+        }
+        let (Some(dir), Some(e)) = (&d.direction, &d.irradiance) else {
+            self.error(at, "sun light needs a `direction` and an `irradiance`");
+            return None;
+        };
+        let direction = self.vec3(dir, "sun direction");
+        let irradiance = self.colour(e, "sun irradiance");
+        if direction.length() < 1e-9 {
+            self.error(dir.span().start, "sun direction is zero");
+            return None;
+        }
+        Some(Light::Directional {
+            direction: direction.normalize(),
+            irradiance,
+        })
     }
 }

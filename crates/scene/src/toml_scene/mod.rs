@@ -2,6 +2,7 @@
 //! the file as serde sees it; stage two, here and in the sibling files, validates it into a
 //! [`Scene`], collecting every problem.
 
+mod environment;
 mod format;
 mod light;
 mod material;
@@ -173,21 +174,21 @@ impl Ctx<'_> {
             }
         }
         if let Some(env) = &raw.environment {
-            scene.environment = Some(self.colour(&env.get_ref().radiance, "environment radiance"));
+            self.environment(env, &mut scene);
         }
         if let Some(p) = raw.camera_path {
             scene.camera_path = self.camera_path(p);
         }
-        let emitters = scene.has_emissive_instance();
-        if scene.meshes.is_empty() && scene.lights.is_empty() && scene.environment.is_none() {
+        if scene.meshes.is_empty()
+            && scene.lights.is_empty()
+            && scene.environment.is_none()
+            && scene.environment_map.is_none()
+        {
             self.error(
                 0,
                 "the scene is empty: it has no shapes, lights or environment",
             );
-        } else if !emitters
-            && scene.lights.is_empty()
-            && scene.environment.is_none_or(|e| e.max_element() <= 0.0)
-        {
+        } else if !scene.has_light_source() {
             self.warning(0, "the scene has no light source (no emissive material, light or environment): it will render black");
         }
         scene

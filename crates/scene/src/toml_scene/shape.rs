@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use toml::Spanned;
 
 impl Ctx<'_> {
-    fn transform(&mut self, t: &Spanned<TransformDef>) -> Transform {
+    pub(super) fn transform(&mut self, t: &Spanned<TransformDef>) -> Transform {
         let d = t.get_ref();
         let at = t.span().start;
         if let Some(m) = d.matrix {

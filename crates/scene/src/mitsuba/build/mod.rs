@@ -12,6 +12,7 @@ use std::collections::{HashMap, HashSet};
 mod bsdf;
 mod dielectric;
 mod emitter;
+mod integrator;
 mod params;
 mod sensor;
 mod shape;
@@ -135,6 +136,7 @@ impl<'t> Builder<'t> {
                             direction,
                             ..
                         } => position.is_finite() && direction.is_finite(),
+                        Light::Directional { direction, .. } => direction.is_finite(),
                     });
                     self.single_precision(ok, o);
                 }
@@ -232,18 +234,18 @@ impl<'t> Builder<'t> {
 
     pub(super) fn check_lights(&mut self) {
         let s = &self.scene;
-        let emitters = s.has_emissive_instance();
-        if s.meshes.is_empty() && s.lights.is_empty() && s.environment.is_none() {
+        if s.meshes.is_empty()
+            && s.lights.is_empty()
+            && s.environment.is_none()
+            && s.environment_map.is_none()
+        {
             let d = self.sources.whole(
                 Severity::Error,
                 "the scene is empty: it has no shapes, lights or environment",
             );
             self.diags.push(d);
-        } else if !emitters
-            && s.lights.is_empty()
-            && s.environment.is_none_or(|e| e.max_element() <= 0.0)
-        {
-            let d = self.sources.whole(Severity::Warning, "the scene has no light source (no area, point, spot or constant emitter): it will render black");
+        } else if !s.has_light_source() {
+            let d = self.sources.whole(Severity::Warning, "the scene has no light source (no area, point, spot, directional, constant or envmap emitter): it will render black");
             self.diags.push(d);
         }
     }

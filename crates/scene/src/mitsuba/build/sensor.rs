@@ -1,4 +1,4 @@
-//! The sensor and what it nests (film, rfilter, sampler), and the integrator.
+//! The sensor and what it nests (film, rfilter, sampler).
 use super::Builder;
 use crate::mitsuba::xml::{ChildKind, Obj, Value};
 use crate::{Camera, PixelFilter};
@@ -100,7 +100,8 @@ impl<'t> Builder<'t> {
                 }
             }
             (None, focal) => {
-                // Mitsuba: a 35 mm film (36 mm wide) with a 50 mm lens unless told otherwise.
+                // Mitsuba: a 50 mm lens unless told otherwise, on 35 mm film (36 × 24 mm),
+                // measured along the film's diagonal (`parse_fov` in Mitsuba's sensor.h).
                 let mm = match focal {
                     None => Some(50.0),
                     Some((at, Value::Str(s))) => {
@@ -125,7 +126,11 @@ impl<'t> Builder<'t> {
                         None
                     }
                 };
-                mm.and_then(|f| vertical_fov(2.0 * (18.0 / f).atan().to_degrees(), "x", aspect))
+                let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+                mm.and_then(|f| {
+                    let fov = 2.0 * (diagonal / (2.0 * f)).atan().to_degrees();
+                    vertical_fov(fov, "diagonal", aspect)
+                })
             }
         };
         self.finish(o);
@@ -294,59 +299,6 @@ impl<'t> Builder<'t> {
             self.int(s, "strength");
         }
         self.finish(s);
-    }
-
-    pub(super) fn integrator(&mut self, o: &'t Obj) {
-        // `moment` adds variance AOVs to the image of the integrator it wraps.
-        if o.kind == "moment" {
-            match self.nested(o, "integrator") {
-                Some(inner) => self.integrator(inner),
-                None => self.error(
-                    o.at,
-                    format!("{} needs one nested <integrator>", o.describe()),
-                ),
-            }
-            self.finish(o);
-            return;
-        }
-        if o.kind != "path" {
-            self.error(
-                o.at,
-                format!("unsupported {}: eyeadapt is a unidirectional path tracer (use <integrator type=\"path\">)", o.describe()),
-            );
-            return;
-        }
-        match self.int(o, "max_depth") {
-            Some((d, _)) if d == -1 || (1..=1024).contains(&d) => {
-                self.scene.render.max_depth = Some(d as i32)
-            }
-            Some((d, at)) => self.error(
-                at,
-                format!(
-                    "{}: max_depth {d} must be -1 (unlimited) or 1..=1024",
-                    o.describe()
-                ),
-            ),
-            None => self.scene.render.max_depth = Some(-1),
-        }
-        match self.int(o, "rr_depth") {
-            Some((d, _)) if (1..=1024).contains(&d) => self.scene.render.rr_depth = Some(d as u32),
-            Some((d, at)) => self.error(
-                at,
-                format!("{}: rr_depth {d} must be 1..=1024", o.describe()),
-            ),
-            None => self.scene.render.rr_depth = Some(5),
-        }
-        // Accepted: how many samples Mitsuba takes per pass changes nothing in the result.
-        self.int(o, "samples_per_pass");
-        if let Some(true) = self.boolean(o, "hide_emitters") {
-            let at = self.prop(o, "hide_emitters").map_or(o.at, |p| p.at);
-            self.error(
-                at,
-                format!("{}: hide_emitters = true is not supported", o.describe()),
-            );
-        }
-        self.finish(o);
     }
 }
 

@@ -145,21 +145,7 @@ impl<'t> Builder<'t> {
             return None;
         };
         let path = self.sources.resolve(file);
-        let key = (path.clone(), raw);
-        let image = match self.images.get(&key) {
-            Some(i) => i.clone(),
-            None => match crate::load_image(&path, raw) {
-                Ok(i) => {
-                    let i = std::sync::Arc::new(i);
-                    self.images.insert(key, i.clone());
-                    i
-                }
-                Err(e) => {
-                    self.error(at, e);
-                    return None;
-                }
-            },
-        };
+        let image = self.image(&path, raw, at)?;
         Some(Bitmap {
             filename: path,
             image,
@@ -168,6 +154,31 @@ impl<'t> Builder<'t> {
             wrap,
             to_uv,
         })
+    }
+
+    /// The decoded image file `path`, shared by every user of the same (file, raw); a file
+    /// that cannot be decoded is an error at `at`.
+    pub(super) fn image(
+        &mut self,
+        path: &std::path::Path,
+        raw: bool,
+        at: usize,
+    ) -> Option<std::sync::Arc<crate::Image>> {
+        let key = (path.to_path_buf(), raw);
+        if let Some(i) = self.images.get(&key) {
+            return Some(i.clone());
+        }
+        match crate::load_image(path, raw) {
+            Ok(i) => {
+                let i = std::sync::Arc::new(i);
+                self.images.insert(key, i.clone());
+                Some(i)
+            }
+            Err(e) => {
+                self.error(at, e);
+                None
+            }
+        }
     }
 
     /// `to_uv`: the 2D part of a 4×4 transform (x and y rows, the translation column).

@@ -1,0 +1,157 @@
+//! A piecewise-constant density over the unit square, from non-negative weights on an
+//! `nu × nv` grid of cells: sampled by inverting the marginal CDF over rows, then the row's
+//! conditional CDF, so that each cell is reached in proportion to its weight and uniformly
+//! within it (pbrt's `PiecewiseConstant2D`, built here without its code).
+//!
+//! Conditional CDFs are per row (single precision is enough within a row); the marginal is in
+//! double precision, so a map of millions of cells keeps its small rows.
+
+pub struct Distribution2D {
+    nu: usize,
+    nv: usize,
+    /// Row-major, per row the running sum of its weights (the last entry is the row's total).
+    row_cdf: Vec<f32>,
+    /// Running sum of the row totals.
+    marginal: Vec<f64>,
+}
+
+/// Index of the first entry of the increasing `cdf` above `target`, and how far `target` lies
+/// into that entry's step, in [0, 1).
+#[inline]
+fn invert<T: Copy + Into<f64>>(cdf: &[T], target: f64) -> (usize, f64) {
+    let k = cdf
+        .partition_point(|&c| c.into() <= target)
+        .min(cdf.len() - 1);
+    let lo = if k == 0 { 0.0 } else { cdf[k - 1].into() };
+    let width = cdf[k].into() - lo;
+    let frac = if width > 0.0 {
+        ((target - lo) / width).clamp(0.0, 1.0 - f64::EPSILON)
+    } else {
+        0.0
+    };
+    (k, frac)
+}
+
+impl Distribution2D {
+    /// The density of `weights` (row-major, `nv` rows of `nu`); `None` when they sum to 0 or
+    /// are not all finite and non-negative.
+    pub fn new(weights: &[f32], nu: usize, nv: usize) -> Option<Distribution2D> {
+        assert_eq!(weights.len(), nu * nv, "one weight per cell");
+        if nu == 0 || nv == 0 || weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+            return None;
+        }
+        let mut row_cdf = Vec::with_capacity(weights.len());
+        let mut marginal = Vec::with_capacity(nv);
+        let mut total = 0.0f64;
+        for row in weights.chunks_exact(nu) {
+            let mut acc = 0.0f64;
+            for w in row {
+                acc += *w as f64;
+                row_cdf.push(acc as f32);
+            }
+            total += acc;
+            marginal.push(total);
+        }
+        (total > 0.0 && total.is_finite()).then_some(Distribution2D {
+            nu,
+            nv,
+            row_cdf,
+            marginal,
+        })
+    }
+
+    fn total(&self) -> f64 {
+        self.marginal[self.nv - 1]
+    }
+
+    fn row(&self, j: usize) -> &[f32] {
+        &self.row_cdf[j * self.nu..(j + 1) * self.nu]
+    }
+
+    /// Weight of cell (i, j).
+    #[inline]
+    fn weight(&self, i: usize, j: usize) -> f64 {
+        let row = self.row(j);
+        let lo = if i == 0 { 0.0 } else { row[i - 1] as f64 };
+        row[i] as f64 - lo
+    }
+
+    /// A point of the unit square drawn from the density with `u`, and its density there.
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> ([f32; 2], f32) {
+        let (j, fv) = invert(&self.marginal, u[1] as f64 * self.total());
+        let row = self.row(j);
+        let (i, fu) = invert(row, u[0] as f64 * row[self.nu - 1] as f64);
+        // Below 1 after rounding to single precision; the density is the one `pdf` reports
+        // at the rounded point (they differ only where rounding crosses a cell's edge).
+        let below_one = |x: f64| (x as f32).min(1.0 - f32::EPSILON / 2.0);
+        let p = [
+            below_one((i as f64 + fu) / self.nu as f64),
+            below_one((j as f64 + fv) / self.nv as f64),
+        ];
+        (p, self.pdf(p))
+    }
+
+    #[inline]
+    fn cell_pdf(&self, i: usize, j: usize) -> f32 {
+        (self.weight(i, j) / self.total() * (self.nu * self.nv) as f64) as f32
+    }
+
+    /// Density at point `p` of the unit square (the cell's, constant within it).
+    #[inline]
+    pub fn pdf(&self, p: [f32; 2]) -> f32 {
+        let i = ((p[0] * self.nu as f32) as usize).min(self.nu - 1);
+        let j = ((p[1] * self.nv as f32) as usize).min(self.nv - 1);
+        self.cell_pdf(i, j)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::{SampleStream, hash_key};
+
+    #[test]
+    fn cells_are_reached_in_proportion_to_their_weight() {
+        // 4 × 3 cells, one of them empty; χ² of the cell counts of 60 000 samples.
+        let w = [1.0, 2.0, 0.0, 4.0, 0.5, 0.5, 3.0, 1.0, 8.0, 0.25, 0.25, 2.5];
+        let d = Distribution2D::new(&w, 4, 3).unwrap();
+        let total: f32 = w.iter().sum();
+        let n = 60_000u32;
+        let mut counts = [0u32; 12];
+        let key = hash_key(&[41]);
+        for s in 0..n {
+            let (p, pdf) = d.sample(SampleStream::new(key, s).next_2d());
+            assert!(
+                (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]),
+                "{p:?}"
+            );
+            assert_eq!(pdf, d.pdf(p), "sample and pdf agree at {p:?}");
+            let cell = (p[1] * 3.0) as usize * 4 + (p[0] * 4.0) as usize;
+            counts[cell] += 1;
+        }
+        assert_eq!(counts[2], 0, "an empty cell is never sampled");
+        let chi2: f64 = (0..12)
+            .filter(|&k| w[k] > 0.0)
+            .map(|k| {
+                let e = n as f64 * (w[k] / total) as f64;
+                (counts[k] as f64 - e).powi(2) / e
+            })
+            .sum();
+        // 10 degrees of freedom: the 0.999 quantile is 29.6.
+        assert!(chi2 < 29.6, "χ² = {chi2}, counts {counts:?}");
+        // The density integrates to 1 over the square (midpoint rule per cell is exact).
+        let integral: f64 = (0..12)
+            .map(|k| d.pdf([((k % 4) as f32 + 0.5) / 4.0, ((k / 4) as f32 + 0.5) / 3.0]) as f64)
+            .sum::<f64>()
+            / 12.0;
+        assert!((integral - 1.0).abs() < 1e-6, "∫ pdf = {integral}");
+    }
+
+    #[test]
+    fn no_weight_no_distribution() {
+        assert!(Distribution2D::new(&[0.0; 6], 3, 2).is_none());
+        assert!(Distribution2D::new(&[1.0, f32::NAN], 2, 1).is_none());
+        assert!(Distribution2D::new(&[1.0, -1.0], 2, 1).is_none());
+    }
+}

@@ -1,0 +1,225 @@
+//! The environment: radiance arriving from infinitely far away along a direction, either
+//! constant or read from a latitude–longitude map (`eyeadapt_scene::EnvironmentMap`, Mitsuba's
+//! `envmap` mapping and bilinear lookup).
+//!
+//! A map is sampled in proportion to its luminance × sin θ: a piecewise-constant density
+//! ([`Distribution2D`]) over the cells between neighbouring texel centres, each weighted by the
+//! largest luminance of its four corners (so every direction whose bilinear radiance is not
+//! black has a positive density) times the solid angle of its band. A constant environment is
+//! sampled uniformly over the sphere.
+use crate::distribution2d::Distribution2D;
+use crate::emitter::luminance;
+use eyeadapt_scene::EnvironmentMap;
+use glam::{Mat3A, Vec3A};
+use std::f32::consts::PI;
+
+pub enum Environment {
+    Constant(Vec3A),
+    Map(Box<LatLong>),
+}
+
+/// A lat-long map ready for lookups and sampling.
+pub struct LatLong {
+    w: usize,
+    h: usize,
+    /// Radiance (scale applied), row 0 at the +y pole of the map's frame.
+    texels: Vec<Vec3A>,
+    to_world: Mat3A,
+    from_world: Mat3A,
+    /// Over cells (i, j): texel centres i..i+1 along u (wrapping), rows j..j+1 along v.
+    dist: Distribution2D,
+    mean: Vec3A,
+}
+
+/// A direction drawn from the environment: unit `wi`, radiance `li`, solid-angle density.
+pub struct EnvSample {
+    pub wi: Vec3A,
+    pub li: Vec3A,
+    pub pdf: f32,
+}
+
+impl Environment {
+    /// The environment of a scene: its constant radiance, its map, or the map with the
+    /// constant added; `None` when nothing is bright.
+    pub fn new(constant: Option<Vec3A>, map: Option<&EnvironmentMap>) -> Option<Environment> {
+        let c = constant.unwrap_or(Vec3A::ZERO);
+        match map {
+            None => (c.max_element() > 0.0).then_some(Environment::Constant(c)),
+            Some(m) => LatLong::new(m, c).map(|l| Environment::Map(Box::new(l))),
+        }
+    }
+
+    /// Radiance arriving along unit direction `d` (looking out along `d`).
+    #[inline]
+    pub fn radiance(&self, d: Vec3A) -> Vec3A {
+        match self {
+            Environment::Constant(c) => *c,
+            Environment::Map(m) => {
+                let (u, v, _) = m.uv(d);
+                m.lookup(u, v)
+            }
+        }
+    }
+
+    /// Draws a direction with the 2-D sample `u`.
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
+        match self {
+            Environment::Constant(c) => {
+                let z = 1.0 - 2.0 * u[0];
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * PI * u[1];
+                Some(EnvSample {
+                    wi: Vec3A::new(r * phi.cos(), r * phi.sin(), z),
+                    li: *c,
+                    pdf: 1.0 / (4.0 * PI),
+                })
+            }
+            Environment::Map(m) => m.sample(u),
+        }
+    }
+
+    /// Solid-angle density with which [`Environment::sample`] draws unit direction `d`.
+    #[inline]
+    pub fn pdf(&self, d: Vec3A) -> f32 {
+        match self {
+            Environment::Constant(_) => 1.0 / (4.0 * PI),
+            Environment::Map(m) => {
+                let (u, v, sin_t) = m.uv(d);
+                m.pdf_uv(u, v, sin_t)
+            }
+        }
+    }
+
+    /// Mean radiance over the sphere (∫ L dω / 4π; cell by cell for a map).
+    pub fn mean(&self) -> Vec3A {
+        match self {
+            Environment::Constant(c) => *c,
+            Environment::Map(m) => m.mean,
+        }
+    }
+}
+
+impl LatLong {
+    fn new(m: &EnvironmentMap, add: Vec3A) -> Option<LatLong> {
+        let (w, h) = (m.image.width as usize, m.image.height as usize);
+        if w == 0 || h == 0 {
+            return None;
+        }
+        let texels: Vec<Vec3A> = m
+            .image
+            .texels
+            .iter()
+            .map(|t| Vec3A::from(*t) * m.scale + add)
+            .collect();
+        let nv = (h - 1).max(1);
+        let mut weights = Vec::with_capacity(w * nv);
+        let mut sum = glam::DVec3::ZERO;
+        for j in 0..nv {
+            let (j0, j1) = (j.min(h - 1), (j + 1).min(h - 1));
+            let c0 = (PI * j as f32 / nv as f32).cos();
+            let c1 = (PI * (j + 1) as f32 / nv as f32).cos();
+            let band = (c0 - c1).max(0.0);
+            for i in 0..w {
+                let i1 = (i + 1) % w;
+                let corners = [
+                    texels[j0 * w + i],
+                    texels[j0 * w + i1],
+                    texels[j1 * w + i],
+                    texels[j1 * w + i1],
+                ];
+                let peak = corners
+                    .iter()
+                    .map(|c| luminance(*c).max(1e-6 * c.max_element()))
+                    .fold(0.0f32, f32::max);
+                weights.push(peak * band);
+                let avg = corners.iter().copied().sum::<Vec3A>() * 0.25;
+                sum +=
+                    glam::Vec3::from(avg).as_dvec3() * (band as f64 * 2.0 * PI as f64 / w as f64);
+            }
+        }
+        let dist = Distribution2D::new(&weights, w, nv)?;
+        let to_world = Mat3A::from(m.to_world);
+        Some(LatLong {
+            w,
+            h,
+            texels,
+            to_world,
+            from_world: to_world.transpose(),
+            dist,
+            mean: Vec3A::from((sum / (4.0 * std::f64::consts::PI)).as_vec3()),
+        })
+    }
+
+    /// Map coordinates (u, v) of world direction `d`, and sin θ there.
+    #[inline]
+    fn uv(&self, d: Vec3A) -> (f32, f32, f32) {
+        let l = (self.from_world * d).normalize();
+        let mut u = l.x.atan2(-l.z) * (0.5 / PI);
+        if u < 0.0 {
+            u += 1.0;
+        }
+        let y = l.y.clamp(-1.0, 1.0);
+        (u, y.acos() / PI, (1.0 - y * y).max(0.0).sqrt())
+    }
+
+    /// Bilinear radiance at (u, v): between texel centres along u (wrapping), between rows
+    /// along v (row 0 at v = 0, the last row at v = 1).
+    #[inline]
+    fn lookup(&self, u: f32, v: f32) -> Vec3A {
+        let x = u * self.w as f32 - 0.5;
+        let x0 = x.floor();
+        let fx = x - x0;
+        let i0 = (x0 as i64).rem_euclid(self.w as i64) as usize;
+        let i1 = (i0 + 1) % self.w;
+        let y = (v * (self.h - 1) as f32).max(0.0);
+        let j0 = (y as usize).min(self.h.saturating_sub(2));
+        let fy = (y - j0 as f32).clamp(0.0, 1.0);
+        let j1 = (j0 + 1).min(self.h - 1);
+        let t = |i: usize, j: usize| self.texels[j * self.w + i];
+        let top = t(i0, j0) * (1.0 - fx) + t(i1, j0) * fx;
+        let bottom = t(i0, j1) * (1.0 - fx) + t(i1, j1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+
+    /// The distribution's coordinates of map point (u, v).
+    #[inline]
+    fn cell_coords(&self, u: f32, v: f32) -> [f32; 2] {
+        let x = (u * self.w as f32 - 0.5).rem_euclid(self.w as f32) / self.w as f32;
+        [x, v]
+    }
+
+    #[inline]
+    fn pdf_uv(&self, u: f32, v: f32, sin_t: f32) -> f32 {
+        if sin_t <= 0.0 {
+            return 0.0;
+        }
+        self.dist.pdf(self.cell_coords(u, v)) / (2.0 * PI * PI * sin_t)
+    }
+
+    #[inline]
+    fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
+        let (p, pdf) = self.dist.sample(u);
+        let mut mu = p[0] + 0.5 / self.w as f32;
+        if mu >= 1.0 {
+            mu -= 1.0;
+        }
+        let v = p[1];
+        let (sin_t, cos_t) = (PI * v).sin_cos();
+        if sin_t <= 0.0 || pdf <= 0.0 {
+            return None;
+        }
+        let (sin_p, cos_p) = (2.0 * PI * mu).sin_cos();
+        let local = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
+        let wi = (self.to_world * local).normalize();
+        // Radiance and density as a ray escaping along `wi` will see them (rounding in the
+        // round trip can move a direction across a cell's edge; MIS needs the same numbers).
+        let (u, v, sin_t) = self.uv(wi);
+        let pdf = self.pdf_uv(u, v, sin_t);
+        (pdf > 0.0).then(|| EnvSample {
+            wi,
+            li: self.lookup(u, v),
+            pdf,
+        })
+    }
+}
