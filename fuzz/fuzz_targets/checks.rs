@@ -44,25 +44,7 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             check_colour(mat.emission).is_ok(),
             "bad emission accepted: {mat:?}"
         );
-        let ok = match &mat.bsdf {
-            Bsdf::Diffuse { reflectance } => colour(reflectance),
-            Bsdf::Conductor {
-                alpha,
-                eta,
-                k,
-                specular_reflectance,
-            } => {
-                number(alpha)
-                    && check_colour(*eta).is_ok()
-                    && check_colour(*k).is_ok()
-                    && colour(specular_reflectance)
-            }
-            Bsdf::Plastic {
-                reflectance,
-                alpha,
-                ior,
-            } => colour(reflectance) && number(alpha) && ior.is_finite(),
-        };
+        let ok = bsdf_ok(&mat.bsdf, &colour, &number);
         assert!(ok, "bad material accepted: {mat:?}");
     }
     if let Some(c) = &scene.camera {
@@ -96,6 +78,10 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
                     && cone_deg.is_finite()
                     && falloff_deg.is_finite()
             }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => direction.is_finite() && check_colour(*irradiance).is_ok(),
         };
         assert!(ok, "bad light accepted: {l:?}");
     }
@@ -271,5 +257,63 @@ pub fn mitsuba_xml(data: &[u8]) {
                 let _ = d.to_string();
             }
         }
+    }
+}
+
+/// Every parameter of `b` (and of the BSDFs it wraps) is usable.
+fn bsdf_ok(
+    b: &Bsdf,
+    colour: &dyn Fn(&Param<Vec3>) -> bool,
+    number: &dyn Fn(&Param<f32>) -> bool,
+) -> bool {
+    let ior_ok = |eta: f32| eta.is_finite() && eta > 0.0;
+    match b {
+        Bsdf::Diffuse { reflectance } => colour(reflectance),
+        Bsdf::Conductor {
+            alpha,
+            distribution: _,
+            eta,
+            k,
+            specular_reflectance,
+        } => {
+            number(alpha)
+                && check_colour(*eta).is_ok()
+                && check_colour(*k).is_ok()
+                && colour(specular_reflectance)
+        }
+        Bsdf::Plastic {
+            reflectance,
+            alpha,
+            distribution: _,
+            ior,
+        } => colour(reflectance) && number(alpha) && ior.is_finite(),
+        Bsdf::Dielectric {
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        }
+        | Bsdf::ThinDielectric {
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        } => {
+            ior_ok(*eta)
+                && check_colour(*specular_reflectance).is_ok()
+                && check_colour(*specular_transmittance).is_ok()
+        }
+        Bsdf::RoughDielectric {
+            alpha,
+            distribution: _,
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        } => {
+            number(alpha)
+                && ior_ok(*eta)
+                && check_colour(*specular_reflectance).is_ok()
+                && check_colour(*specular_transmittance).is_ok()
+        }
+        Bsdf::OneSided(inner) => bsdf_ok(inner, colour, number),
+        Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, colour, number),
     }
 }
