@@ -23,7 +23,13 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
     let file = crate::open_input(path)
         .map_err(|e| format!("cannot read image {}: {e}", path.display()))?;
-    let reader = ImageReader::new(std::io::BufReader::new(file))
+    // The extension's format unless the content says otherwise (as `ImageReader::open`
+    // does), so that a `.png` holding junk is a decoding error, not an unknown format.
+    let mut reader = ImageReader::new(std::io::BufReader::new(file));
+    if let Ok(f) = image::ImageFormat::from_path(path) {
+        reader.set_format(f);
+    }
+    let reader = reader
         .with_guessed_format()
         .map_err(|e| format!("cannot read texture file {}: {e}", path.display()))?;
     use image::ImageFormat as F;
