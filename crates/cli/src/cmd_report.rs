@@ -22,16 +22,17 @@ pub fn run(a: ReportArgs) -> Result<(), Failure> {
         video: a.video,
         overlay: a.overlay,
         sigma_s: a.sigma_s,
-        progress: progress_lines(LogFormat::Plain),
+        progress: progress_lines(LogFormat::Plain, false),
         ..ReportOptions::default()
     };
     write_report(&a.dir, &opts)
 }
 
 /// The report's progress: a line per step (`openjd_status: report: …` with `log`
-/// openjd), counted steps as a bar on a terminal, else a line at each quarter.
-pub fn progress_lines(log: LogFormat) -> Option<ReportProgress> {
-    let tty = std::io::stderr().is_terminal();
+/// openjd), counted steps as a bar on a terminal (unless `no_bar`), else a line at each
+/// quarter.
+pub fn progress_lines(log: LogFormat, no_bar: bool) -> Option<ReportProgress> {
+    let tty = std::io::stderr().is_terminal() && !no_bar;
     let bar: Mutex<Option<(String, ProgressBar, usize)>> = Mutex::new(None);
     let say = move |s: String| match log {
         LogFormat::Plain => println!("report: {s}"),

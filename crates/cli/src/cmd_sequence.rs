@@ -122,7 +122,7 @@ pub fn run(a: SequenceArgs) -> Result<(), Failure> {
     if s.complete && opts.chunk.is_none() && !a.no_report {
         stop.set_reporting();
         let report = ReportOptions {
-            progress: crate::cmd_report::progress_lines(log_format),
+            progress: crate::cmd_report::progress_lines(log_format, a.no_progress_bar),
             ..Default::default()
         };
         crate::cmd_report::report_unless_current(&out, &report)?;
