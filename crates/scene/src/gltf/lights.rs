@@ -1,11 +1,14 @@
 //! `KHR_lights_punctual` lights as eyeadapt lights, with the unit conversion.
 //!
-//! glTF gives point and spot intensities in candela (lm/sr) and directional ones in lux;
-//! eyeadapt's light `intensity` is radiant intensity (W/sr). The conversion is by the
+//! glTF gives point and spot intensities in candela (lm/sr) and directional ones in lux
+//! (lm/m²); eyeadapt's light `intensity` is radiant intensity (W/sr) and a sun's `irradiance`
+//! is W/m². The conversion is by the
 //! luminous efficacy 683 lm/W that defines the candela and that Blender's exporter uses
 //! (`PBR_WATTS_TO_LUMENS`; with its default "Standard" lighting mode a Blender point light of
 //! P watts is written as P/(4π)·683 cd), so `I [W/sr] = colour × intensity [cd] / 683`, and a
-//! Blender light of P W comes back as P/(4π) W/sr — what Cycles emits.
+//! Blender light of P W comes back as P/(4π) W/sr — what Cycles emits. Likewise a directional
+//! light of E lux has irradiance E/683 W/m² (Blender writes a sun's strength S W/m² as 683·S
+//! lux, so it comes back as S).
 //!
 //! Spots: glTF's `outerConeAngle` is where the light reaches zero (eyeadapt's `cone_deg`),
 //! `innerConeAngle` where it starts to fall (`falloff_deg`). glTF suggests a smooth falloff in
@@ -63,12 +66,10 @@ pub fn light(
                 falloff_deg: inner_cone_angle.to_degrees().clamp(0.0, cone_deg),
             })
         }
-        Kind::Directional => {
-            warn(
-                format!("{here}/type"),
-                "directional lights (suns) are not rendered yet; this light is left out".into(),
-            );
-            None
-        }
+        // Lux is lm/m²: the sun's irradiance in W/m² is lux / 683, travelling down the node's −z.
+        Kind::Directional => Some(Light::Directional {
+            direction,
+            irradiance: intensity / LUMENS_PER_WATT,
+        }),
     }
 }

@@ -7,7 +7,9 @@
 //!   factor;
 //! - roughness: glTF's metallic-roughness texture holds roughness in G (and metallic in B),
 //!   linear; the texel becomes the GGX α = (factor · G)² the BSDFs take, as a grey texel (a
-//!   number parameter reads a texture's luminance, which is the grey value itself).
+//!   number parameter reads a texture's luminance, which is the grey value itself);
+//! - opacity: the base colour texture's alpha times the factor's, cut to 0 or 1 at
+//!   `alphaCutoff` in MASK mode, as it is in BLEND mode (a grey texel, as for roughness).
 //!
 //! The sampler's magnification filter picks nearest or bilinear lookups, its wrap modes
 //! Mitsuba's repeat / mirror / clamp (one mode for both axes: a sampler that differs between S
@@ -31,6 +33,8 @@ pub enum Use {
     BaseColor([u32; 3]),
     /// (factor · G)², the factor's bits in the key.
     Alpha(u32),
+    /// Opacity: factor · A, cut to 0 or 1 at `cutoff` for glTF's MASK mode (bits in the key).
+    Opacity { factor: u32, cutoff: Option<u32> },
 }
 
 /// Decoded images and the textures made from them, for one file.
@@ -205,6 +209,14 @@ fn texel(p: &[f32; 4], usage: Use) -> Rgb {
             let r = (f32::from_bits(f) * p[1]).clamp(0.0, 1.0);
             Rgb::splat(r * r)
         }
+        Use::Opacity { factor, cutoff } => {
+            let a = (f32::from_bits(factor) * p[3]).clamp(0.0, 1.0);
+            Rgb::splat(match cutoff {
+                Some(c) if a >= f32::from_bits(c) => 1.0,
+                Some(_) => 0.0,
+                None => a,
+            })
+        }
     }
 }
 
@@ -314,6 +326,22 @@ mod tests {
         // G = 0.6 (R and B, occlusion and metallic, are ignored), factor 0.5: α = 0.3².
         let t = texel(&[0.9, 0.6, 0.1, 1.0], Use::Alpha(0.5f32.to_bits()));
         assert!((t - Rgb::splat(0.09)).abs().max_element() < 1e-6, "{t}");
+    }
+
+    #[test]
+    fn opacity_texels_are_the_alpha_channel_cut_in_mask_mode() {
+        let p = [0.2, 0.2, 0.2, 0.6];
+        let blend = Use::Opacity {
+            factor: 0.5f32.to_bits(),
+            cutoff: None,
+        };
+        assert!((texel(&p, blend).x - 0.3).abs() < 1e-6);
+        let mask = |c: f32| Use::Opacity {
+            factor: 1.0f32.to_bits(),
+            cutoff: Some(c.to_bits()),
+        };
+        assert_eq!(texel(&p, mask(0.5)), Rgb::ONE);
+        assert_eq!(texel(&p, mask(0.7)), Rgb::ZERO);
     }
 
     #[test]

@@ -1,7 +1,8 @@
-//! glTF textures read into the scene's texture table: base colour (sRGB decoded, times the
-//! factor), metallic-roughness (α = (factor · G)² per texel), the sampler, and
-//! `KHR_texture_transform`, on a file written here with its `.bin` and PNGs beside it.
-use eyeadapt_scene::{Bsdf, FilterType, Param, Texture, WrapMode, gltf};
+//! glTF materials and lights on a file written here with its `.bin` and PNGs beside it:
+//! textures read into the scene's texture table (base colour sRGB-decoded times the factor,
+//! metallic-roughness as α = (factor · G)² per texel, the sampler, `KHR_texture_transform`),
+//! glass (`KHR_materials_transmission`, `_ior`, `_volume`), alpha modes, directional lights.
+use eyeadapt_scene::{Bsdf, FilterType, Light, Param, Texture, WrapMode, gltf};
 use glam::Vec2;
 use std::path::Path;
 
@@ -34,10 +35,14 @@ fn write_scene(dir: &Path, material: &str) -> std::path::PathBuf {
     let json = format!(
         r#"{{
   "asset": {{"version": "2.0"}},
-  "extensionsUsed": ["KHR_texture_transform"],
+  "extensionsUsed": ["KHR_texture_transform", "KHR_materials_transmission", "KHR_materials_ior",
+                     "KHR_materials_volume", "KHR_lights_punctual"],
+  "extensions": {{"KHR_lights_punctual": {{"lights": [
+    {{"type": "directional", "intensity": 1366.0, "color": [1.0, 0.5, 0.25]}}]}}}},
   "scene": 0,
-  "scenes": [{{"nodes": [0]}}],
-  "nodes": [{{"mesh": 0}}],
+  "scenes": [{{"nodes": [0, 1]}}],
+  "nodes": [{{"mesh": 0}},
+            {{"rotation": [-0.7071068, 0, 0, 0.7071068], "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
   "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "material": 0}}]}}],
   "materials": [{material}],
   "textures": [{{"source": 0}}, {{"source": 1, "sampler": 0}}],
@@ -160,4 +165,109 @@ fn a_missing_image_is_named_with_its_pointer() {
         err.contains("/images/0/uri") && err.contains("base.png"),
         "{err}"
     );
+}
+
+#[test]
+fn transmission_makes_thin_glass_or_refracting_glass_with_a_volume() {
+    let dir = tempfile::tempdir().unwrap();
+    let glass = |extra: &str| {
+        let m = format!(
+            r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [0.9, 1.0, 0.8, 1.0],
+                "metallicFactor": 0.0, "roughnessFactor": 0.0}},
+               "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1.0}},
+                              "KHR_materials_ior": {{"ior": 1.45}}{extra}}}}}"#
+        );
+        gltf::load_gltf(&write_scene(dir.path(), &m))
+            .unwrap()
+            .materials[0]
+            .bsdf
+            .clone()
+    };
+    // glTF's glass is thin-walled unless a volume gives it thickness.
+    match glass("") {
+        Bsdf::ThinDielectric {
+            eta,
+            specular_transmittance,
+            ..
+        } => {
+            assert_eq!(eta, 1.45);
+            assert_eq!(specular_transmittance, glam::Vec3::new(0.9, 1.0, 0.8));
+        }
+        b => panic!("{b:?}"),
+    }
+    let thick = r#", "KHR_materials_volume": {"thicknessFactor": 0.02}"#;
+    assert!(matches!(glass(thick), Bsdf::Dielectric { eta, .. } if eta == 1.45));
+}
+
+#[test]
+fn alpha_modes_cut_out_or_blend() {
+    let dir = tempfile::tempdir().unwrap();
+    let bsdf = |m: &str| {
+        gltf::load_gltf(&write_scene(dir.path(), m))
+            .unwrap()
+            .materials[0]
+            .bsdf
+            .clone()
+    };
+    let opaque = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}}"#;
+    assert!(
+        matches!(bsdf(opaque), Bsdf::Conductor { .. }),
+        "OPAQUE ignores alpha"
+    );
+    let blend =
+        r#"{"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}}"#;
+    assert!(matches!(bsdf(blend), Bsdf::Mask { opacity: Param::Const(o), .. } if o == 0.3));
+    let cut = r#"{"alphaMode": "MASK", "alphaCutoff": 0.5, "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}}"#;
+    assert!(matches!(bsdf(cut), Bsdf::Mask { opacity: Param::Const(o), .. } if o == 0.0));
+    let kept =
+        r#"{"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.6]}}"#;
+    assert!(
+        matches!(bsdf(kept), Bsdf::Conductor { .. }),
+        "above the default cutoff 0.5"
+    );
+    // With a texture the opacity is per texel (base.png has no alpha channel: all opaque).
+    let textured =
+        r#"{"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}"#;
+    let scene = gltf::load_gltf(&write_scene(dir.path(), textured)).unwrap();
+    let Bsdf::Mask {
+        opacity: Param::Texture(t),
+        ..
+    } = scene.materials[0].bsdf
+    else {
+        panic!("{:?}", scene.materials[0].bsdf);
+    };
+    assert!(
+        bitmap(&scene.textures[t.0 as usize])
+            .image
+            .texels
+            .iter()
+            .all(|&x| x == glam::Vec3::ONE)
+    );
+}
+
+#[test]
+fn a_directional_light_is_a_sun_of_lux_over_683_down_its_nodes_minus_z() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = gltf::load_gltf(&write_scene(dir.path(), "{}")).unwrap();
+    // 1366 lux × (1, 0.5, 0.25) / 683 lm/W; the node turns −z to −y: the sun shines down.
+    match scene.lights[..] {
+        [
+            Light::Directional {
+                direction,
+                irradiance,
+            },
+        ] => {
+            assert!(
+                (irradiance - glam::Vec3::new(2.0, 1.0, 0.5))
+                    .abs()
+                    .max_element()
+                    < 1e-5
+            );
+            assert!(
+                (direction - glam::Vec3::NEG_Y).length() < 1e-5,
+                "{direction}"
+            );
+        }
+        ref other => panic!("{other:?}"),
+    }
 }
