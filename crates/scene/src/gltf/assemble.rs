@@ -18,25 +18,42 @@ use std::collections::HashMap;
 /// its own); the height follows the camera's aspect ratio, 16:9 when the file gives none.
 const DEFAULT_WIDTH: u32 = 640;
 
+/// The scene being put together, and what is read once however many nodes use it.
+struct Assembly<'f> {
+    file: &'f GltfFile,
+    tree: &'f NodeTree,
+    s: Scene,
+    errors: Vec<Diagnostic>,
+    warnings: Vec<Diagnostic>,
+    meshes: HashMap<(usize, usize), Option<MeshId>>,
+    mats: HashMap<Option<usize>, MaterialId>,
+    textures: Textures<'f>,
+    moving: SceneAnimation,
+}
+
 /// The scene of `file`, seen from `camera` at time 0.
 pub fn scene(
     file: &GltfFile,
     tree: &NodeTree,
     camera: Option<&AnimatedCamera>,
 ) -> Result<Scene, SceneError> {
-    let mut s = Scene {
-        source: file.path.clone(),
-        ..Scene::default()
-    };
-    let mut errors: Vec<Diagnostic> = Vec::new();
-    let mut warnings: Vec<Diagnostic> = Vec::new();
-    let mut meshes: HashMap<(usize, usize), Option<MeshId>> = HashMap::new();
-    let mut mats: HashMap<Option<usize>, MaterialId> = HashMap::new();
-    let mut textures = Textures::new(file);
-    let mut moving = SceneAnimation {
-        tree: tree.clone(),
-        instances: Vec::new(),
-        lights: Vec::new(),
+    let mut a = Assembly {
+        file,
+        tree,
+        s: Scene {
+            source: file.path.clone(),
+            ..Scene::default()
+        },
+        errors: Vec::new(),
+        warnings: Vec::new(),
+        meshes: HashMap::new(),
+        mats: HashMap::new(),
+        textures: Textures::new(file),
+        moving: SceneAnimation {
+            tree: tree.clone(),
+            instances: Vec::new(),
+            lights: Vec::new(),
+        },
     };
     let roots: Vec<gltf::Node> = match file
         .document
@@ -60,67 +77,16 @@ pub fn scene(
         for c in node.children() {
             stack.push((c, world));
         }
-        let animated = tree.is_animated(node.index());
-        if let Some(light) = node.light()
-            && let Some(l) = lights::light(&file.path, &light, world, &mut warnings)
-        {
-            if animated {
-                let local = lights::light(&file.path, &light, DMat4::IDENTITY, &mut Vec::new());
-                let index = s.lights.len() as u32;
-                moving
-                    .lights
-                    .extend(local.map(|l| (index, node.index(), l)));
-            }
-            s.lights.push(l);
-        }
-        let Some(mesh) = node.mesh() else { continue };
-        for prim in mesh.primitives() {
-            let key = (mesh.index(), prim.index());
-            let id = match meshes.get(&key) {
-                Some(id) => *id,
-                None => {
-                    let id = match geometry::primitive_mesh(file, &mesh, &prim, &mut warnings) {
-                        Ok(Some(m)) => Some(s.add_mesh(m)),
-                        Ok(None) => None,
-                        Err(e) => {
-                            errors.push(e);
-                            None
-                        }
-                    };
-                    meshes.insert(key, id);
-                    id
-                }
-            };
-            let Some(id) = id else { continue };
-            let gm = prim.material();
-            let mat = match mats.get(&gm.index()) {
-                Some(id) => *id,
-                None => {
-                    let m = materials::material(file, &gm, &mut textures, &mut s, &mut warnings)
-                        .unwrap_or_else(|e| {
-                            errors.push(e);
-                            crate::Material::error()
-                        });
-                    s.materials.push(m);
-                    let id = MaterialId(s.materials.len() as u32 - 1);
-                    mats.insert(gm.index(), id);
-                    id
-                }
-            };
-            if animated {
-                moving
-                    .instances
-                    .push((s.instances.len() as u32, node.index()));
-            }
-            s.add_instance(
-                id,
-                Some(mat),
-                Transform {
-                    matrix: world.as_mat4(),
-                },
-            );
-        }
+        a.place_light(&node, world);
+        a.place_meshes(&node, world);
     }
+    let Assembly {
+        mut s,
+        mut errors,
+        mut warnings,
+        moving,
+        ..
+    } = a;
     if let Some(cam) = camera {
         s.camera = Some(scene_camera(file, cam)?);
     }
@@ -144,6 +110,84 @@ pub fn scene(
         .for_each(|w| w.severity = Severity::Warning);
     s.warnings = warnings;
     Ok(s)
+}
+
+impl Assembly<'_> {
+    /// The node's `KHR_lights_punctual` light, placed by `world` (and listed as moving when
+    /// the node is animated, in node space).
+    fn place_light(&mut self, node: &gltf::Node, world: DMat4) {
+        let Some(light) = node.light() else { return };
+        let Some(l) = lights::light(&self.file.path, &light, world, &mut self.warnings) else {
+            return;
+        };
+        if self.tree.is_animated(node.index()) {
+            let local = lights::light(&self.file.path, &light, DMat4::IDENTITY, &mut Vec::new());
+            let index = self.s.lights.len() as u32;
+            self.moving
+                .lights
+                .extend(local.map(|l| (index, node.index(), l)));
+        }
+        self.s.lights.push(l);
+    }
+
+    /// One instance per primitive of the node's mesh (each mesh and material read once).
+    fn place_meshes(&mut self, node: &gltf::Node, world: DMat4) {
+        let Some(mesh) = node.mesh() else { return };
+        for prim in mesh.primitives() {
+            let Some(id) = self.mesh(&mesh, &prim) else {
+                continue;
+            };
+            let mat = self.material(&prim.material());
+            if self.tree.is_animated(node.index()) {
+                let index = self.s.instances.len() as u32;
+                self.moving.instances.push((index, node.index()));
+            }
+            self.s.add_instance(
+                id,
+                Some(mat),
+                Transform {
+                    matrix: world.as_mat4(),
+                },
+            );
+        }
+    }
+
+    fn mesh(&mut self, mesh: &gltf::Mesh, prim: &gltf::Primitive) -> Option<MeshId> {
+        let key = (mesh.index(), prim.index());
+        if let Some(id) = self.meshes.get(&key) {
+            return *id;
+        }
+        let id = match geometry::primitive_mesh(self.file, mesh, prim, &mut self.warnings) {
+            Ok(Some(m)) => Some(self.s.add_mesh(m)),
+            Ok(None) => None,
+            Err(e) => {
+                self.errors.push(e);
+                None
+            }
+        };
+        self.meshes.insert(key, id);
+        id
+    }
+
+    fn material(&mut self, gm: &gltf::Material) -> MaterialId {
+        if let Some(id) = self.mats.get(&gm.index()) {
+            return *id;
+        }
+        let m = materials::material(
+            self.file,
+            gm,
+            &mut self.textures,
+            &mut self.s,
+            &mut self.warnings,
+        )
+        .unwrap_or_else(|e| {
+            self.errors.push(e);
+            crate::Material::error()
+        });
+        let id = self.s.add_material(m);
+        self.mats.insert(gm.index(), id);
+        id
+    }
 }
 
 fn scene_camera(file: &GltfFile, cam: &AnimatedCamera) -> Result<Camera, SceneError> {
