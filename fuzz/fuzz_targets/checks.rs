@@ -31,38 +31,12 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             assert!((i as usize) < scene.materials.len(), "dangling material id");
         }
     }
-    let colour = |p: &Param<Vec3>| match p {
-        Param::Const(c) => check_colour(*c).is_ok(),
-        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
-    };
-    let number = |p: &Param<f32>| match p {
-        Param::Const(x) => x.is_finite(),
-        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
-    };
     for mat in &scene.materials {
         assert!(
             check_colour(mat.emission).is_ok(),
             "bad emission accepted: {mat:?}"
         );
-        let ok = match &mat.bsdf {
-            Bsdf::Diffuse { reflectance } => colour(reflectance),
-            Bsdf::Conductor {
-                alpha,
-                eta,
-                k,
-                specular_reflectance,
-            } => {
-                number(alpha)
-                    && check_colour(*eta).is_ok()
-                    && check_colour(*k).is_ok()
-                    && colour(specular_reflectance)
-            }
-            Bsdf::Plastic {
-                reflectance,
-                alpha,
-                ior,
-            } => colour(reflectance) && number(alpha) && ior.is_finite(),
-        };
+        let ok = bsdf_ok(&mat.bsdf, scene.textures.len());
         assert!(ok, "bad material accepted: {mat:?}");
     }
     if let Some(c) = &scene.camera {
@@ -271,5 +245,61 @@ pub fn mitsuba_xml(data: &[u8]) {
                 let _ = d.to_string();
             }
         }
+    }
+}
+
+/// Every value a BSDF (and the BSDFs it wraps) holds is usable: finite colours, numbers and
+/// IORs (positive for dielectrics), textures that exist.
+fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
+    let colour = |p: &Param<Vec3>| match p {
+        Param::Const(c) => check_colour(*c).is_ok(),
+        Param::Texture(t) => (t.0 as usize) < textures,
+    };
+    let number = |p: &Param<f32>| match p {
+        Param::Const(x) => x.is_finite(),
+        Param::Texture(t) => (t.0 as usize) < textures,
+    };
+    let glass = |eta: f32, r: Vec3, t: Vec3| {
+        eta.is_finite() && eta > 0.0 && check_colour(r).is_ok() && check_colour(t).is_ok()
+    };
+    match bsdf {
+        Bsdf::Diffuse { reflectance } => colour(reflectance),
+        Bsdf::Conductor {
+            alpha,
+            distribution: _,
+            eta,
+            k,
+            specular_reflectance,
+        } => {
+            number(alpha)
+                && check_colour(*eta).is_ok()
+                && check_colour(*k).is_ok()
+                && colour(specular_reflectance)
+        }
+        Bsdf::Plastic {
+            reflectance,
+            alpha,
+            distribution: _,
+            ior,
+        } => colour(reflectance) && number(alpha) && ior.is_finite(),
+        Bsdf::Dielectric {
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        }
+        | Bsdf::ThinDielectric {
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        } => glass(*eta, *specular_reflectance, *specular_transmittance),
+        Bsdf::RoughDielectric {
+            alpha,
+            distribution: _,
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        } => number(alpha) && glass(*eta, *specular_reflectance, *specular_transmittance),
+        Bsdf::OneSided(inner) => bsdf_ok(inner, textures),
+        Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, textures),
     }
 }
