@@ -301,5 +301,8 @@ fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
         } => number(alpha) && glass(*eta, *specular_reflectance, *specular_transmittance),
         Bsdf::OneSided(inner) => bsdf_ok(inner, textures),
         Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, textures),
+        Bsdf::NormalMap { normals, bsdf } => {
+            (normals.0 as usize) < textures && bsdf_ok(bsdf, textures)
+        }
     }
 }

@@ -310,6 +310,11 @@ impl Feed for Bsdf {
                 opacity.feed(h);
                 bsdf.feed(h);
             }
+            Bsdf::NormalMap { normals, bsdf } => {
+                tag(h, 8);
+                normals.0.feed(h);
+                bsdf.feed(h);
+            }
         }
     }
 }

@@ -137,6 +137,10 @@ pub enum Bsdf {
         opacity: Param<f32>,
         bsdf: Box<Bsdf>,
     },
+    /// The inner BSDF with its shading normal taken from a tangent-space normal map
+    /// (Mitsuba's `normalmap`: the texture's RGB in [0, 1] is the normal 2·rgb − 1 in the
+    /// frame of the shading normal and ∂p/∂u).
+    NormalMap { normals: TextureId, bsdf: Box<Bsdf> },
 }
 
 /// A named material.
