@@ -4,7 +4,9 @@
 //! them) and each node that uses one an instance with its world transform; materials are read
 //! once each; `KHR_lights_punctual` lights are placed by their nodes; the chosen camera at
 //! time 0 is the scene camera.
+use super::animated::SceneAnimation;
 use super::camera::AnimatedCamera;
+use super::nodes::NodeTree;
 use super::read::{GltfFile, at, fail};
 use super::textures::Textures;
 use super::{geometry, lights, materials};
@@ -17,7 +19,11 @@ use std::collections::HashMap;
 const DEFAULT_WIDTH: u32 = 640;
 
 /// The scene of `file`, seen from `camera` at time 0.
-pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, SceneError> {
+pub fn scene(
+    file: &GltfFile,
+    tree: &NodeTree,
+    camera: Option<&AnimatedCamera>,
+) -> Result<Scene, SceneError> {
     let mut s = Scene {
         source: file.path.clone(),
         ..Scene::default()
@@ -27,6 +33,11 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
     let mut meshes: HashMap<(usize, usize), Option<MeshId>> = HashMap::new();
     let mut mats: HashMap<Option<usize>, MaterialId> = HashMap::new();
     let mut textures = Textures::new(file);
+    let mut moving = SceneAnimation {
+        tree: tree.clone(),
+        instances: Vec::new(),
+        lights: Vec::new(),
+    };
     let roots: Vec<gltf::Node> = match file
         .document
         .default_scene()
@@ -49,9 +60,17 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
         for c in node.children() {
             stack.push((c, world));
         }
+        let animated = tree.is_animated(node.index());
         if let Some(light) = node.light()
             && let Some(l) = lights::light(&file.path, &light, world, &mut warnings)
         {
+            if animated {
+                let local = lights::light(&file.path, &light, DMat4::IDENTITY, &mut Vec::new());
+                let index = s.lights.len() as u32;
+                moving
+                    .lights
+                    .extend(local.map(|l| (index, node.index(), l)));
+            }
             s.lights.push(l);
         }
         let Some(mesh) = node.mesh() else { continue };
@@ -88,6 +107,11 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
                     id
                 }
             };
+            if animated {
+                moving
+                    .instances
+                    .push((s.instances.len() as u32, node.index()));
+            }
             s.add_instance(
                 id,
                 Some(mat),
@@ -111,6 +135,9 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
         return Err(SceneError {
             diagnostics: errors,
         });
+    }
+    if !moving.is_empty() {
+        s.animation = Some(std::sync::Arc::new(moving));
     }
     warnings
         .iter_mut()
