@@ -31,20 +31,12 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             assert!((i as usize) < scene.materials.len(), "dangling material id");
         }
     }
-    let colour = |p: &Param<Vec3>| match p {
-        Param::Const(c) => check_colour(*c).is_ok(),
-        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
-    };
-    let number = |p: &Param<f32>| match p {
-        Param::Const(x) => x.is_finite(),
-        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
-    };
     for mat in &scene.materials {
         assert!(
             check_colour(mat.emission).is_ok(),
             "bad emission accepted: {mat:?}"
         );
-        let ok = bsdf_ok(&mat.bsdf, &colour, &number);
+        let ok = bsdf_ok(&mat.bsdf, scene.textures.len());
         assert!(ok, "bad material accepted: {mat:?}");
     }
     if let Some(c) = &scene.camera {
@@ -260,14 +252,21 @@ pub fn mitsuba_xml(data: &[u8]) {
     }
 }
 
-/// Every parameter of `b` (and of the BSDFs it wraps) is usable.
-fn bsdf_ok(
-    b: &Bsdf,
-    colour: &dyn Fn(&Param<Vec3>) -> bool,
-    number: &dyn Fn(&Param<f32>) -> bool,
-) -> bool {
-    let ior_ok = |eta: f32| eta.is_finite() && eta > 0.0;
-    match b {
+/// Every value a BSDF (and the BSDFs it wraps) holds is usable: finite colours, numbers and
+/// IORs (positive for dielectrics), textures that exist.
+fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
+    let colour = |p: &Param<Vec3>| match p {
+        Param::Const(c) => check_colour(*c).is_ok(),
+        Param::Texture(t) => (t.0 as usize) < textures,
+    };
+    let number = |p: &Param<f32>| match p {
+        Param::Const(x) => x.is_finite(),
+        Param::Texture(t) => (t.0 as usize) < textures,
+    };
+    let glass = |eta: f32, r: Vec3, t: Vec3| {
+        eta.is_finite() && eta > 0.0 && check_colour(r).is_ok() && check_colour(t).is_ok()
+    };
+    match bsdf {
         Bsdf::Diffuse { reflectance } => colour(reflectance),
         Bsdf::Conductor {
             alpha,
@@ -296,24 +295,18 @@ fn bsdf_ok(
             eta,
             specular_reflectance,
             specular_transmittance,
-        } => {
-            ior_ok(*eta)
-                && check_colour(*specular_reflectance).is_ok()
-                && check_colour(*specular_transmittance).is_ok()
-        }
+        } => glass(*eta, *specular_reflectance, *specular_transmittance),
         Bsdf::RoughDielectric {
             alpha,
             distribution: _,
             eta,
             specular_reflectance,
             specular_transmittance,
-        } => {
-            number(alpha)
-                && ior_ok(*eta)
-                && check_colour(*specular_reflectance).is_ok()
-                && check_colour(*specular_transmittance).is_ok()
+        } => number(alpha) && glass(*eta, *specular_reflectance, *specular_transmittance),
+        Bsdf::OneSided(inner) => bsdf_ok(inner, textures),
+        Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, textures),
+        Bsdf::NormalMap { normals, bsdf } => {
+            (normals.0 as usize) < textures && bsdf_ok(bsdf, textures)
         }
-        Bsdf::OneSided(inner) => bsdf_ok(inner, colour, number),
-        Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, colour, number),
     }
 }

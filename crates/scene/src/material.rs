@@ -25,6 +25,16 @@
 //! reflectance = [0.4, 0.3, 0.2]     # diffuse base
 //! roughness = 0.05                  # GGX alpha of the coating, clamped to >= 0.01
 //! ior = 1.5
+//!
+//! [[materials]]
+//! name = "window"
+//! type = "dielectric"               # glass; `roughness` > 0 makes it rough (GGX)
+//! ior = 1.5                         # interior over exterior
+//!
+//! [[materials]]
+//! name = "pane"
+//! type = "thin_dielectric"          # a thin sheet, light passes undeflected
+//! ior = 1.5
 //! ```
 use crate::{Rgb, TextureId};
 
@@ -127,6 +137,10 @@ pub enum Bsdf {
         opacity: Param<f32>,
         bsdf: Box<Bsdf>,
     },
+    /// The inner BSDF with its shading normal taken from a tangent-space normal map
+    /// (Mitsuba's `normalmap`: the texture's RGB in [0, 1] is the normal 2·rgb − 1 in the
+    /// frame of the shading normal and ∂p/∂u).
+    NormalMap { normals: TextureId, bsdf: Box<Bsdf> },
 }
 
 /// A named material.

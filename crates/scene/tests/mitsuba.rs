@@ -536,6 +536,26 @@ fn dielectrics_load_with_mitsubas_iors_and_included_files() {
 }
 
 #[test]
+fn masks_and_normal_maps_wrap_their_bsdf_and_twosided_reaches_inside() {
+    let s = load(
+        "<shape type=\"cube\"><bsdf type=\"twosided\"><bsdf type=\"mask\"><float name=\"opacity\" value=\"0.3\"/><bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"checkerboard\"/><bsdf type=\"diffuse\"/></bsdf></bsdf></bsdf></shape><emitter type=\"constant\"/>",
+    )
+    .unwrap();
+    assert_eq!(
+        s.materials[0].bsdf,
+        Bsdf::Mask {
+            opacity: 0.3.into(),
+            bsdf: Box::new(Bsdf::NormalMap {
+                normals: TextureId(0),
+                bsdf: Box::new(Bsdf::Diffuse {
+                    reflectance: Vec3::splat(0.5).into()
+                }),
+            }),
+        }
+    );
+}
+
+#[test]
 fn bad_iors_and_masks_are_errors_at_their_elements() {
     for (bsdf, words) in [
         (
@@ -559,6 +579,10 @@ fn bad_iors_and_masks_are_errors_at_their_elements() {
             &["`opacity`", "outside [0, 1]"],
         ),
         ("<bsdf type=\"mask\"/>", &["needs one nested <bsdf>"]),
+        (
+            "<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf>",
+            &["needs a <texture name=\"normalmap\">"],
+        ),
     ] {
         let text = xml(&format!(
             "<shape type=\"cube\">\n{bsdf}\n</shape><emitter type=\"constant\"/>"

@@ -63,6 +63,25 @@ pub struct BsdfSample {
     pub delta: bool,
 }
 
+impl BsdfSample {
+    /// The sample `wi` of a non-delta lobe with density `pdf` and value `f()`; none where the
+    /// density is zero or not finite (`f` is then not evaluated).
+    #[inline]
+    pub fn of_lobe(wi: Vec3A, pdf: f32, f: impl FnOnce() -> Vec3A) -> Option<BsdfSample> {
+        if pdf <= 0.0 || !pdf.is_finite() {
+            return None;
+        }
+        let f = f();
+        Some(BsdfSample {
+            wi,
+            f,
+            pdf,
+            weight: f * (wi.z.abs() / pdf),
+            delta: false,
+        })
+    }
+}
+
 fn fresnel_conductor3(c: f32, eta: Vec3A, k: Vec3A) -> Vec3A {
     Vec3A::new(
         fresnel_conductor(c, eta.x, k.x),
@@ -282,18 +301,7 @@ impl Bsdf {
         if wi.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 || !pdf.is_finite() {
-            return None;
-        }
-        let f = self.eval(wo, wi);
-        Some(BsdfSample {
-            wi,
-            f,
-            pdf,
-            weight: f * (wi.z / pdf),
-            delta: false,
-        })
+        BsdfSample::of_lobe(wi, self.pdf(wo, wi), || self.eval(wo, wi))
     }
 }
 

@@ -126,17 +126,6 @@ impl RoughDielectric {
         if (wi.z > 0.0) != reflect {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 || !pdf.is_finite() {
-            return None;
-        }
-        let f = self.eval(wo, wi);
-        Some(BsdfSample {
-            wi,
-            f,
-            pdf,
-            weight: f * (wi.z.abs() / pdf),
-            delta: false,
-        })
+        BsdfSample::of_lobe(wi, self.pdf(wo, wi), || self.eval(wo, wi))
     }
 }

@@ -11,7 +11,7 @@ use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
 use crate::texture;
-use eyeadapt_scene::{Bsdf as SceneBsdf, Material, Param, Rgb, Scene, Texture};
+use eyeadapt_scene::{Bsdf as SceneBsdf, Material, Param, Rgb, Scene, Texture, TextureId};
 use glam::Vec3A;
 
 struct Entry {
@@ -24,6 +24,8 @@ struct Entry {
     one_sided: bool,
     /// Masks' opacities (empty: opaque).
     opacity: Vec<Param<f32>>,
+    /// A tangent-space normal map replacing the shading normal (the innermost one counts).
+    normal_map: Option<TextureId>,
 }
 
 impl Entry {
@@ -31,6 +33,7 @@ impl Entry {
         let mut bsdf = &m.bsdf;
         let mut one_sided = false;
         let mut opacity = Vec::new();
+        let mut normal_map = None;
         loop {
             match bsdf {
                 SceneBsdf::OneSided(b) => {
@@ -42,6 +45,10 @@ impl Entry {
                     bsdf: b,
                 } => {
                     opacity.push(*o);
+                    bsdf = b;
+                }
+                SceneBsdf::NormalMap { normals, bsdf: b } => {
+                    normal_map = Some(*normals);
                     bsdf = b;
                 }
                 _ => break,
@@ -56,6 +63,7 @@ impl Entry {
             },
             one_sided,
             opacity,
+            normal_map,
         }
     }
 }
@@ -101,6 +109,23 @@ impl Materials {
             Param::Const(x) => x,
             Param::Texture(t) => luminance(texture::eval(&self.textures[t.0 as usize], si)),
         }
+    }
+
+    /// The shading normal at `si`: the mesh's, or its material's normal map's, 2·rgb − 1 in
+    /// the frame of the mesh's shading normal and ∂p/∂u (as Mitsuba's `normalmap`).
+    #[inline]
+    pub fn shading_normal(&self, si: &SurfaceInteraction) -> Vec3A {
+        let Some(t) = self.entries[si.material as usize].normal_map else {
+            return si.ns;
+        };
+        let local = texture::eval(&self.textures[t.0 as usize], si) * 2.0 - Vec3A::ONE;
+        let n = si.ns;
+        let s = (si.dpdu - n * n.dot(si.dpdu)).normalize_or_zero();
+        if s == Vec3A::ZERO {
+            return n;
+        }
+        let m = (s * local.x + n.cross(s) * local.y + n * local.z).normalize_or_zero();
+        if m == Vec3A::ZERO { n } else { m }
     }
 
     /// The probability that a ray passes straight through `si` (its masks' opacity).
@@ -183,7 +208,9 @@ impl Materials {
                 })
             }
             // Flattened into the entry.
-            SceneBsdf::OneSided(_) | SceneBsdf::Mask { .. } => unreachable!(),
+            SceneBsdf::OneSided(_) | SceneBsdf::Mask { .. } | SceneBsdf::NormalMap { .. } => {
+                unreachable!()
+            }
         }
     }
 }

@@ -104,7 +104,8 @@ impl Vertex {
         // Shading frame on the viewer's side; the BSDF knows which side that is.
         let front = si.ng.dot(wo) > 0.0;
         let ng = if front { si.ng } else { -si.ng };
-        let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
+        let ns = scene.materials.shading_normal(si);
+        let ns = if ns.dot(ng) < 0.0 { -ns } else { ns };
         let frame = Frame::new(ns);
         Vertex {
             ng,

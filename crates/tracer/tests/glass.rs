@@ -167,3 +167,52 @@ fn aovs_behind_glass_read_the_first_non_specular_hit() {
     let expect = t * 5.0 + (1.0 - t) * 3.5;
     assert!((centre - expect).abs() < 0.1, "{centre} vs {expect}");
 }
+
+#[test]
+fn a_normal_map_turns_the_shading_normal() {
+    // A floor facing the camera, lit by a point light off to +x: a normal map that tilts the
+    // normals towards +x brightens it, one that tilts them away darkens it, a flat one
+    // (rgb ½, ½, 1) changes nothing.
+    let floor = quad_mesh(
+        Vec3::new(-2.0, -2.0, 0.0),
+        Vec3::new(4.0, 0.0, 0.0),
+        Vec3::new(0.0, 4.0, 0.0),
+    );
+    let lit = |normal: Option<Rgb>| {
+        let mut s = Scene::default();
+        let diffuse = Bsdf::Diffuse {
+            reflectance: Param::Const(Rgb::splat(0.5)),
+        };
+        let bsdf = match normal {
+            None => diffuse,
+            Some(c) => {
+                let t = s.add_texture(eyeadapt_scene::Texture::Checkerboard {
+                    color0: c,
+                    color1: c,
+                    to_uv: glam::Affine2::IDENTITY,
+                });
+                Bsdf::NormalMap {
+                    normals: t,
+                    bsdf: Box::new(diffuse),
+                }
+            }
+        };
+        let m = material(&mut s, bsdf);
+        s.add_world_mesh(floor.clone(), Some(m));
+        s.lights.push(eyeadapt_scene::Light::Point {
+            position: Vec3::new(3.0, 0.0, 1.0),
+            intensity: Rgb::splat(10.0),
+        });
+        mean(&shoot(&s, 4, 2).rgb).x
+    };
+    let plain = lit(None);
+    let flat = lit(Some(Rgb::new(0.5, 0.5, 1.0)));
+    // Tangent +x is ∂p/∂u, which runs along the quad's u edge (+x).
+    let towards = lit(Some(Rgb::new(0.85, 0.5, 0.85)));
+    let away = lit(Some(Rgb::new(0.15, 0.5, 0.85)));
+    assert!((flat - plain).abs() < 1e-4 * plain, "{flat} vs {plain}");
+    assert!(
+        towards > 1.2 * plain && away < 0.8 * plain,
+        "{away} < {plain} < {towards}"
+    );
+}

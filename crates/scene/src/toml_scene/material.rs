@@ -28,11 +28,13 @@ impl Ctx<'_> {
                 "roughness_texture",
                 "ior",
             ],
+            "dielectric" => &["roughness", "roughness_texture", "ior"],
+            "thin_dielectric" => &["ior"],
             other => {
                 self.error(
                     m.kind.span().start,
                     format!(
-                        "unknown material type \"{other}\" (expected diffuse, conductor or plastic)"
+                        "unknown material type \"{other}\" (expected diffuse, conductor, plastic, dielectric or thin_dielectric)"
                     ),
                 );
                 return Material::error();
@@ -139,6 +141,7 @@ impl Ctx<'_> {
                     specular_reflectance,
                 }
             }
+            "dielectric" | "thin_dielectric" => self.glass(m, kind, &name, roughness),
             _ => {
                 let ior = m.ior.as_ref().map_or(1.5, |v| {
                     let x = *v.get_ref();
@@ -169,6 +172,55 @@ impl Ctx<'_> {
             name,
             bsdf,
             emission,
+        }
+    }
+
+    /// Glass: `ior` (interior over exterior, default 1.5, positive), and for `dielectric` a
+    /// `roughness` (GGX alpha; 0 or absent: smooth) or `roughness_texture`.
+    fn glass(
+        &mut self,
+        m: &MaterialDef,
+        kind: &str,
+        name: &str,
+        roughness: impl FnOnce(&mut Self) -> f32,
+    ) -> Bsdf {
+        let eta = m.ior.as_ref().map_or(1.5, |v| {
+            let x = *v.get_ref();
+            if !(x.is_finite() && x > 0.0) {
+                self.error(v.span().start, format!("ior {x} must be positive"));
+                return 1.5;
+            }
+            x
+        });
+        let (r, t) = (Rgb::ONE, Rgb::ONE);
+        if kind == "thin_dielectric" {
+            return Bsdf::ThinDielectric {
+                eta,
+                specular_reflectance: r,
+                specular_transmittance: t,
+            };
+        }
+        let alpha = self.param(name, &m.roughness_texture, m.roughness.is_some(), roughness);
+        if alpha == Param::Const(0.0) || (m.roughness.is_none() && m.roughness_texture.is_none()) {
+            return Bsdf::Dielectric {
+                eta,
+                specular_reflectance: r,
+                specular_transmittance: t,
+            };
+        }
+        if eta == 1.0 {
+            let at = m
+                .ior
+                .as_ref()
+                .map_or(m.kind.span().start, |v| v.span().start);
+            self.error(at, "a rough dielectric needs an ior other than 1");
+        }
+        Bsdf::RoughDielectric {
+            alpha,
+            distribution: Distribution::Ggx,
+            eta,
+            specular_reflectance: r,
+            specular_transmittance: t,
         }
     }
 

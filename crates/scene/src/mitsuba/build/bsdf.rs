@@ -8,7 +8,7 @@ use crate::mitsuba::presets::CONDUCTOR_PRESETS;
 use crate::mitsuba::xml::{ChildKind, Obj};
 use crate::{Bsdf, Distribution, Param, Rgb};
 
-const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, mask and twosided";
+const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, mask, normalmap and twosided";
 /// A BSDF as built from XML, before it becomes a material.
 #[derive(Clone, Debug)]
 pub(crate) struct BuiltBsdf {
@@ -65,6 +65,7 @@ impl<'t> Builder<'t> {
         let bsdf = match o.kind.as_str() {
             "twosided" => return self.twosided(o),
             "mask" => return self.mask(o, name),
+            "normalmap" => return self.normalmap(o, name),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
                 one_sided(Bsdf::Diffuse { reflectance })
@@ -108,7 +109,8 @@ impl<'t> Builder<'t> {
             .iter()
             .filter(|c| match &c.kind {
                 ChildKind::Obj(b) => b.tag == "bsdf",
-                ChildKind::Ref(_) => true,
+                // A named reference is a parameter (a texture), not a nested BSDF.
+                ChildKind::Ref(_) => c.name.is_none(),
             })
             .collect();
         for c in &inner {
@@ -140,6 +142,30 @@ impl<'t> Builder<'t> {
         result.map(|b| BuiltBsdf {
             name: o.id.clone().unwrap_or(b.name),
             bsdf: two_sided(b.bsdf),
+        })
+    }
+
+    /// `normalmap`: its BSDF shaded with the normals of the `normalmap` texture (read as it
+    /// is stored: Mitsuba's scenes give it `raw = true`).
+    fn normalmap(&mut self, o: &'t Obj, name: String) -> Option<BuiltBsdf> {
+        let normals = match self.float_texture(o, "normalmap") {
+            Some(t) => t,
+            None => {
+                self.error(
+                    o.at,
+                    format!("{} needs a <texture name=\"normalmap\">", o.describe()),
+                );
+                None
+            }
+        };
+        let inner = self.nested_bsdf(o, "more than one nested <bsdf>");
+        self.finish(o);
+        Some(BuiltBsdf {
+            bsdf: Bsdf::NormalMap {
+                normals: normals?,
+                bsdf: Box::new(inner?.bsdf),
+            },
+            name,
         })
     }
 
@@ -321,12 +347,17 @@ impl<'t> Builder<'t> {
     }
 }
 
-/// `b` reflecting alike on both sides: the one-sided wrappers removed, also inside masks.
+/// `b` reflecting alike on both sides: the one-sided wrappers removed, also inside masks and
+/// normal maps.
 fn two_sided(b: Bsdf) -> Bsdf {
     match b {
         Bsdf::OneSided(inner) => two_sided(*inner),
         Bsdf::Mask { opacity, bsdf } => Bsdf::Mask {
             opacity,
+            bsdf: Box::new(two_sided(*bsdf)),
+        },
+        Bsdf::NormalMap { normals, bsdf } => Bsdf::NormalMap {
+            normals,
             bsdf: Box::new(two_sided(*bsdf)),
         },
         other => other,

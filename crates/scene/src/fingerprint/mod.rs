@@ -8,13 +8,14 @@
 //! make a resume refuse, never mix scenes.
 use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
-    Bitmap, Bsdf, Camera, CameraPath, Distribution, EnvironmentMap, FilterType, Image, Instance,
-    Keyframe, Light, Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene,
-    Texture, Transform, WrapMode,
+    Bitmap, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light, Mesh,
+    Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform, WrapMode,
 };
 use crate::{Interpolation, Track};
 use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
 use sha2::{Digest, Sha256};
+
+mod material;
 
 /// Something that contributes to a fingerprint.
 trait Feed {
@@ -306,110 +307,6 @@ impl<T: Feed> Feed for Param<T> {
             Param::Texture(t) => {
                 tag(h, 1);
                 t.0.feed(h);
-            }
-        }
-    }
-}
-
-impl Feed for Material {
-    fn feed(&self, h: &mut Sha256) {
-        let Material {
-            name,
-            bsdf,
-            emission,
-        } = self;
-        name.feed(h);
-        emission.feed(h);
-        bsdf.feed(h);
-    }
-}
-
-impl Feed for Distribution {
-    /// GGX feeds nothing, so the fingerprints of scenes from before the distribution existed
-    /// (all GGX) stay the same.
-    fn feed(&self, h: &mut Sha256) {
-        match self {
-            Distribution::Ggx => {}
-            Distribution::Beckmann => tag(h, 1),
-        }
-    }
-}
-
-impl Feed for Bsdf {
-    fn feed(&self, h: &mut Sha256) {
-        match self {
-            Bsdf::Diffuse { reflectance } => {
-                tag(h, 0);
-                reflectance.feed(h);
-            }
-            Bsdf::Conductor {
-                alpha,
-                distribution,
-                eta,
-                k,
-                specular_reflectance,
-            } => {
-                tag(h, 1);
-                alpha.feed(h);
-                distribution.feed(h);
-                eta.feed(h);
-                k.feed(h);
-                specular_reflectance.feed(h);
-            }
-            Bsdf::Plastic {
-                reflectance,
-                alpha,
-                distribution,
-                ior,
-            } => {
-                tag(h, 2);
-                reflectance.feed(h);
-                alpha.feed(h);
-                distribution.feed(h);
-                ior.feed(h);
-            }
-            Bsdf::Dielectric {
-                eta,
-                specular_reflectance,
-                specular_transmittance,
-            } => {
-                tag(h, 3);
-                eta.feed(h);
-                specular_reflectance.feed(h);
-                specular_transmittance.feed(h);
-            }
-            Bsdf::ThinDielectric {
-                eta,
-                specular_reflectance,
-                specular_transmittance,
-            } => {
-                tag(h, 4);
-                eta.feed(h);
-                specular_reflectance.feed(h);
-                specular_transmittance.feed(h);
-            }
-            Bsdf::RoughDielectric {
-                alpha,
-                distribution,
-                eta,
-                specular_reflectance,
-                specular_transmittance,
-            } => {
-                tag(h, 5);
-                alpha.feed(h);
-                distribution.feed(h);
-                eta.feed(h);
-                specular_reflectance.feed(h);
-                specular_transmittance.feed(h);
-            }
-            Bsdf::OneSided(b) => {
-                tag(h, 6);
-                b.feed(h);
-            }
-            Bsdf::Mask { opacity, bsdf } => {
-                tag(h, 7);
-                opacity.feed(h);
-                bsdf.feed(h);
             }
         }
     }
