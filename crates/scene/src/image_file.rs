@@ -23,7 +23,13 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
     let file = crate::open_input(path)
         .map_err(|e| format!("cannot read image {}: {e}", path.display()))?;
-    let reader = ImageReader::new(std::io::BufReader::new(file))
+    // The extension names the format (as `ImageReader::open` does) unless the content says
+    // otherwise.
+    let mut reader = ImageReader::new(std::io::BufReader::new(file));
+    if let Ok(format) = image::ImageFormat::from_path(path) {
+        reader.set_format(format);
+    }
+    let reader = reader
         .with_guessed_format()
         .map_err(|e| format!("cannot read texture file {}: {e}", path.display()))?;
     use image::ImageFormat as F;
