@@ -510,3 +510,41 @@ fn nonsense_numbers_on_the_command_line_are_refused() {
         assert!(err.contains("invalid value"), "{args:?}: {err}");
     }
 }
+
+/// A quad with 1e10-long edges under a uniform sky renders as the diffuse plane it is (the
+/// white furnace's ρ·L = 0.5 per pixel), not black: its normal used to be the cross product of
+/// its edges normalised, whose squared length (1e40) overflows f32.
+#[test]
+fn a_quad_with_1e10_long_edges_renders_like_any_plane() {
+    let t = tempfile::tempdir().unwrap();
+    let scene = t.path().join("plane.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 2.0]\nfov_deg = 45.0\n\
+         width = 8\nheight = 6\n\n[[materials]]\nname = \"grey\"\ntype = \"diffuse\"\n\
+         reflectance = [0.5, 0.5, 0.5]\n\n[[shapes]]\ntype = \"quad\"\nmaterial = \"grey\"\n\
+         corner = [-5e9, 0.0, 5e9]\nu = [1e10, 0.0, 0.0]\nv = [0.0, 0.0, -1e10]\n\n\
+         [environment]\nradiance = [1.0, 1.0, 1.0]\n",
+    )
+    .unwrap();
+    let out = t.path().join("out");
+    let (code, _, err) = run(eyeadapt()
+        .arg("render")
+        .arg(&scene)
+        .args(["--spp", "64", "--out"])
+        .arg(&out));
+    assert_eq!(code, 0, "{err}");
+    let f = eyeadapt_sequencer::output::read_exr(&out.join("raw.exr")).unwrap();
+    let n = f.rgb.len() as f32;
+    let mean = f.rgb.iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>() / (3.0 * n);
+    assert!((mean - 0.5).abs() < 0.05, "mean radiance {mean}, want 0.5");
+    assert!(
+        f.hit.iter().all(|h| *h == 1.0),
+        "every pixel sees the plane"
+    );
+    let normal_y = f.normal.iter().map(|p| p[1]).fold(f32::INFINITY, f32::min);
+    assert!(
+        normal_y > 0.99,
+        "first-hit normal is +y, got y = {normal_y}"
+    );
+}
