@@ -79,84 +79,50 @@ fn a_fifo_anywhere_an_input_file_belongs_fails_at_once_naming_it() {
     let gltf = std::fs::read_to_string(corpus("gltf/missing-buffer.gltf"))
         .unwrap()
         .replace("absent.bin", "pipe.fifo");
-    let cases: Vec<(&str, Vec<String>)> = vec![
-        ("job file", vec!["plan".into(), fifo.display().to_string()]),
+    // (what, command, file written, its text); the command runs on the file.
+    std::fs::write(d.join("mtl.obj"), format!("mtllib pipe.fifo\n{tri}")).unwrap();
+    let xml =
+        |body: &str| format!("<scene version=\"3.0.0\"><emitter type=\"constant\"/>{body}</scene>");
+    let files: Vec<(&str, &str, &str, String)> = vec![
         (
             "job's scene",
-            vec![
-                "plan".into(),
-                write("scene-fifo.toml", "scene = \"pipe.fifo\"\n")
-                    .display()
-                    .to_string(),
-            ],
+            "plan",
+            "scene-fifo.toml",
+            "scene = \"pipe.fifo\"\n".into(),
         ),
-        (
-            "OBJ file",
-            vec![
-                "render".into(),
-                write("obj.toml", &obj_shape("pipe.fifo")).display().to_string(),
-            ],
-        ),
-        ("OBJ mtllib", {
-            write("mtl.obj", &format!("mtllib pipe.fifo\n{tri}"));
-            vec![
-                "render".into(),
-                write("mtl.toml", &obj_shape("mtl.obj")).display().to_string(),
-            ]
-        }),
-        (
-            "texture",
-            vec![
-                "render".into(),
-                write("tex.toml", &textured).display().to_string(),
-            ],
-        ),
+        ("OBJ file", "render", "obj.toml", obj_shape("pipe.fifo")),
+        ("OBJ mtllib", "render", "mtl.toml", obj_shape("mtl.obj")),
+        ("texture", "render", "tex.toml", textured),
         (
             "Mitsuba include",
-            vec![
-                "render".into(),
-                write(
-                    "inc.xml",
-                    "<scene version=\"3.0.0\"><emitter type=\"constant\"/>\
-                     <include filename=\"pipe.fifo\"/></scene>",
-                )
-                .display()
-                .to_string(),
-            ],
+            "render",
+            "inc.xml",
+            xml("<include filename=\"pipe.fifo\"/>"),
         ),
         (
             "PLY filename",
-            vec![
-                "render".into(),
-                write(
-                    "ply.xml",
-                    "<scene version=\"3.0.0\"><emitter type=\"constant\"/>\
-                     <shape type=\"ply\"><string name=\"filename\" value=\"pipe.fifo\"/></shape></scene>",
-                )
-                .display()
-                .to_string(),
-            ],
+            "render",
+            "ply.xml",
+            xml("<shape type=\"ply\"><string name=\"filename\" value=\"pipe.fifo\"/></shape>"),
         ),
         (
             "CSV camera track",
-            vec![
-                "plan".into(),
-                write(
-                    "track.toml",
-                    "scene = \"builtin:three-rooms\"\n[camera_path]\nfile = \"pipe.fifo\"\n",
-                )
-                .display()
-                .to_string(),
-            ],
+            "plan",
+            "track.toml",
+            "scene = \"builtin:three-rooms\"\n[camera_path]\nfile = \"pipe.fifo\"\n".into(),
         ),
-        (
-            "glTF buffer",
-            vec![
-                "render".into(),
-                write("buf.gltf", &gltf).display().to_string(),
-            ],
-        ),
+        ("glTF buffer", "render", "buf.gltf", gltf),
     ];
+    let mut cases = vec![(
+        "job file",
+        vec!["plan".to_string(), fifo.display().to_string()],
+    )];
+    for (what, cmd, file, text) in &files {
+        cases.push((
+            what,
+            vec![cmd.to_string(), write(file, text).display().to_string()],
+        ));
+    }
     let mut failures = Vec::new();
     for (what, args) in &cases {
         let (code, _, err) = run_limited(

@@ -9,6 +9,8 @@
 //! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
 //! reports all of them at once ([`SceneError`]). Warnings (a missing MTL, an unknown material)
 //! do not stop loading: the affected triangles get the loud [`Material::error`] material.
+//! Every file a scene names is opened through [`open_input`], which reads regular files only
+//! (a FIFO or device is an error naming it, never a read that blocks or does not end).
 //!
 //! Units: lengths are arbitrary scene units; colours are linear sRGB (Rec. 709 primaries, D65
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
