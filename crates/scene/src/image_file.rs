@@ -19,8 +19,8 @@ pub fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-/// Most texels a texture may have (a 16384×4096 environment map; 768 MiB as linear f32).
-pub const MAX_TEXELS: u64 = 1 << 26;
+/// Most texels a texture may have, bitmap or glTF image (16384², 3 GiB as linear f32).
+pub const MAX_TEXELS: u64 = 1 << 28;
 
 /// Decodes `path`; the message names the file and what is wrong with it.
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
