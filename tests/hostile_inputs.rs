@@ -79,84 +79,50 @@ fn a_fifo_anywhere_an_input_file_belongs_fails_at_once_naming_it() {
     let gltf = std::fs::read_to_string(corpus("gltf/missing-buffer.gltf"))
         .unwrap()
         .replace("absent.bin", "pipe.fifo");
-    let cases: Vec<(&str, Vec<String>)> = vec![
-        ("job file", vec!["plan".into(), fifo.display().to_string()]),
+    // (what, command, file written, its text); the command runs on the file.
+    std::fs::write(d.join("mtl.obj"), format!("mtllib pipe.fifo\n{tri}")).unwrap();
+    let xml =
+        |body: &str| format!("<scene version=\"3.0.0\"><emitter type=\"constant\"/>{body}</scene>");
+    let files: Vec<(&str, &str, &str, String)> = vec![
         (
             "job's scene",
-            vec![
-                "plan".into(),
-                write("scene-fifo.toml", "scene = \"pipe.fifo\"\n")
-                    .display()
-                    .to_string(),
-            ],
+            "plan",
+            "scene-fifo.toml",
+            "scene = \"pipe.fifo\"\n".into(),
         ),
-        (
-            "OBJ file",
-            vec![
-                "render".into(),
-                write("obj.toml", &obj_shape("pipe.fifo")).display().to_string(),
-            ],
-        ),
-        ("OBJ mtllib", {
-            write("mtl.obj", &format!("mtllib pipe.fifo\n{tri}"));
-            vec![
-                "render".into(),
-                write("mtl.toml", &obj_shape("mtl.obj")).display().to_string(),
-            ]
-        }),
-        (
-            "texture",
-            vec![
-                "render".into(),
-                write("tex.toml", &textured).display().to_string(),
-            ],
-        ),
+        ("OBJ file", "render", "obj.toml", obj_shape("pipe.fifo")),
+        ("OBJ mtllib", "render", "mtl.toml", obj_shape("mtl.obj")),
+        ("texture", "render", "tex.toml", textured),
         (
             "Mitsuba include",
-            vec![
-                "render".into(),
-                write(
-                    "inc.xml",
-                    "<scene version=\"3.0.0\"><emitter type=\"constant\"/>\
-                     <include filename=\"pipe.fifo\"/></scene>",
-                )
-                .display()
-                .to_string(),
-            ],
+            "render",
+            "inc.xml",
+            xml("<include filename=\"pipe.fifo\"/>"),
         ),
         (
             "PLY filename",
-            vec![
-                "render".into(),
-                write(
-                    "ply.xml",
-                    "<scene version=\"3.0.0\"><emitter type=\"constant\"/>\
-                     <shape type=\"ply\"><string name=\"filename\" value=\"pipe.fifo\"/></shape></scene>",
-                )
-                .display()
-                .to_string(),
-            ],
+            "render",
+            "ply.xml",
+            xml("<shape type=\"ply\"><string name=\"filename\" value=\"pipe.fifo\"/></shape>"),
         ),
         (
             "CSV camera track",
-            vec![
-                "plan".into(),
-                write(
-                    "track.toml",
-                    "scene = \"builtin:three-rooms\"\n[camera_path]\nfile = \"pipe.fifo\"\n",
-                )
-                .display()
-                .to_string(),
-            ],
+            "plan",
+            "track.toml",
+            "scene = \"builtin:three-rooms\"\n[camera_path]\nfile = \"pipe.fifo\"\n".into(),
         ),
-        (
-            "glTF buffer",
-            vec![
-                "render".into(),
-                write("buf.gltf", &gltf).display().to_string(),
-            ],
-        ),
+        ("glTF buffer", "render", "buf.gltf", gltf),
     ];
+    let mut cases = vec![(
+        "job file",
+        vec!["plan".to_string(), fifo.display().to_string()],
+    )];
+    for (what, cmd, file, text) in &files {
+        cases.push((
+            what,
+            vec![cmd.to_string(), write(file, text).display().to_string()],
+        ));
+    }
     let mut failures = Vec::new();
     for (what, args) in &cases {
         let (code, _, err) = run_limited(
@@ -343,4 +309,208 @@ fn plan_output_is_safe_to_eval_in_sh_and_bash_and_json_says_the_same() {
         (Some(0), Some(2))
     );
     assert_eq!(v["job_hash"].as_str().map(str::len), Some(64));
+}
+
+/// The demo job's first four frames, tiny, without the report.
+fn small_sequence(out: &Path) {
+    let (code, _, err) = run(eyeadapt()
+        .args([
+            "sequence", "--frames", "0-3", "--width", "8", "--height", "6",
+        ])
+        .args(common::QUICK)
+        .arg("--out")
+        .arg(out));
+    assert_eq!(code, 0, "{err}");
+}
+
+/// Every file under `dir` but the lock, with its bytes and modification time.
+fn bytes_of(dir: &Path) -> Vec<(String, Vec<u8>, std::time::SystemTime)> {
+    let mut v: Vec<_> = common::walk(dir)
+        .into_iter()
+        .filter(|(rel, _)| !rel.ends_with(".eyeadapt.lock"))
+        .map(|(rel, p)| {
+            let t = std::fs::metadata(&p).unwrap().modified().unwrap();
+            (rel, std::fs::read(&p).unwrap(), t)
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// `report` checks every input before it writes anything: `adaptation.csv` against the
+/// committed rows (frames cut from it, `rows/` intact), the raw EXRs against their recorded
+/// sizes, `--sigma-s` × fps against the largest smoothing window. Each is exit 2 naming what is
+/// wrong, and the directory is left exactly as it was (the CSV is not rewritten with derived
+/// rows first).
+#[test]
+fn report_validates_every_input_before_writing_anything() {
+    let t = tempfile::tempdir().unwrap();
+    let good = t.path().join("good");
+    small_sequence(&good);
+    let case = |name: &str, damage: &dyn Fn(&Path), args: &[&str], needles: &[&str]| {
+        let dir = t.path().join(name);
+        let (code, _, err) = run(Command::new("cp").arg("-a").arg(&good).arg(&dir));
+        assert_eq!(code, 0, "{err}");
+        damage(&dir);
+        let before = bytes_of(&dir);
+        let (code, _, err) = run(eyeadapt().arg("report").arg(&dir).args(args));
+        assert_eq!(code, 2, "{name}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{name}: {n:?} not in {err}");
+        }
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(before == bytes_of(&dir), "{name}: the failed report wrote");
+    };
+    case(
+        "cut",
+        &|d| {
+            let csv = std::fs::read_to_string(d.join("adaptation.csv")).unwrap();
+            let kept: String = csv
+                .lines()
+                .filter(|l| !l.starts_with("2,") && !l.starts_with("3,"))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            std::fs::write(d.join("adaptation.csv"), kept).unwrap();
+        },
+        &[],
+        &["adaptation.csv", "2 committed frame(s) (2, 3) differ"],
+    );
+    case(
+        "bad-exr",
+        &|d| {
+            let p = d.join("frames/raw/frame_000002.exr");
+            let bytes = std::fs::read(&p).unwrap();
+            std::fs::write(&p, &bytes[..100]).unwrap();
+        },
+        &[],
+        &["frame_000002.exr", "frame 2's raw EXR is 100 bytes"],
+    );
+    case(
+        "sigma",
+        &|_| {},
+        &["--sigma-s", "1e18"],
+        &["--sigma-s 1e18", "more than the 100000 frames"],
+    );
+    case(
+        "fps",
+        &|d| {
+            let m = std::fs::read_to_string(d.join("manifest.json")).unwrap();
+            let m = m.replacen("\"fps\": 24.0", "\"fps\": 1e300", 1);
+            std::fs::write(d.join("manifest.json"), m).unwrap();
+        },
+        &[],
+        &["manifest fps 1e300 is above the 10000"],
+    );
+}
+
+/// Bad paths are bad input (exit 2) with a message that says what the path is, not I/O
+/// failures (exit 1): a job file that is a loop of symbolic links or a device, `--out` a
+/// symbolic link to nowhere, `report` of a regular file.
+#[test]
+fn bad_paths_are_bad_input_with_true_messages() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let lp = d.join("loop.toml");
+    std::os::unix::fs::symlink(&lp, &lp).unwrap();
+    let dangling = d.join("dangling");
+    std::os::unix::fs::symlink(d.join("nowhere/at/all"), &dangling).unwrap();
+    let file = d.join("file.txt");
+    std::fs::write(&file, "not a directory").unwrap();
+    let job = named_job(d, "ok");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["sequence", lp.to_str().unwrap()],
+            "loop of symbolic links",
+        ),
+        (vec!["sequence", "/dev/zero"], "character device"),
+        (
+            vec![
+                "sequence",
+                job.to_str().unwrap(),
+                "--out",
+                dangling.to_str().unwrap(),
+            ],
+            "is a symbolic link to",
+        ),
+        (
+            vec![
+                "render",
+                "builtin:cornell-box",
+                "--out",
+                dangling.to_str().unwrap(),
+            ],
+            "which does not exist",
+        ),
+        (vec!["report", file.to_str().unwrap()], "is not a directory"),
+        (
+            vec!["plan", job.to_str().unwrap(), "--start", "2", "--end", "1"],
+            "--start 2 is after --end 1",
+        ),
+        (
+            vec!["plan", job.to_str().unwrap(), "--start", "5", "--end", "9"],
+            "--start 5 is after the job's last frame 2",
+        ),
+    ];
+    for (args, needle) in cases {
+        let (code, _, err) = run(eyeadapt().args(&args));
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {needle:?} not in {err}");
+    }
+    assert!(!d.join("nowhere").exists());
+}
+
+/// Numbers that only break after arithmetic: `render --exposure=nan`, and a bench with no
+/// samples, a depth below -1 or no runs, are usage errors (exit 2), not accepted.
+#[test]
+fn nonsense_numbers_on_the_command_line_are_refused() {
+    for args in [
+        &["render", "builtin:cornell-box", "--exposure=nan"][..],
+        &["render", "builtin:cornell-box", "--exposure=inf"],
+        &["bench", "--spp", "0"],
+        &["bench", "--max-depth", "-5"],
+        &["bench", "--runs", "0"],
+        &["bench", "--size", "0"],
+    ] {
+        let (code, _, err) = run(eyeadapt().args(args));
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains("invalid value"), "{args:?}: {err}");
+    }
+}
+
+/// A quad with 1e10-long edges under a uniform sky renders as the diffuse plane it is (the
+/// white furnace's ρ·L = 0.5 per pixel), not black: its normal used to be the cross product of
+/// its edges normalised, whose squared length (1e40) overflows f32.
+#[test]
+fn a_quad_with_1e10_long_edges_renders_like_any_plane() {
+    let t = tempfile::tempdir().unwrap();
+    let scene = t.path().join("plane.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 2.0]\nfov_deg = 45.0\n\
+         width = 8\nheight = 6\n\n[[materials]]\nname = \"grey\"\ntype = \"diffuse\"\n\
+         reflectance = [0.5, 0.5, 0.5]\n\n[[shapes]]\ntype = \"quad\"\nmaterial = \"grey\"\n\
+         corner = [-5e9, 0.0, 5e9]\nu = [1e10, 0.0, 0.0]\nv = [0.0, 0.0, -1e10]\n\n\
+         [environment]\nradiance = [1.0, 1.0, 1.0]\n",
+    )
+    .unwrap();
+    let out = t.path().join("out");
+    let (code, _, err) = run(eyeadapt()
+        .arg("render")
+        .arg(&scene)
+        .args(["--spp", "64", "--out"])
+        .arg(&out));
+    assert_eq!(code, 0, "{err}");
+    let f = eyeadapt_sequencer::output::read_exr(&out.join("raw.exr")).unwrap();
+    let n = f.rgb.len() as f32;
+    let mean = f.rgb.iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>() / (3.0 * n);
+    assert!((mean - 0.5).abs() < 0.05, "mean radiance {mean}, want 0.5");
+    assert!(
+        f.hit.iter().all(|h| *h == 1.0),
+        "every pixel sees the plane"
+    );
+    let normal_y = f.normal.iter().map(|p| p[1]).fold(f32::INFINITY, f32::min);
+    assert!(
+        normal_y > 0.99,
+        "first-hit normal is +y, got y = {normal_y}"
+    );
 }

@@ -12,6 +12,9 @@
 //! atomic write; CSV rows beyond the manifest: between the append and the manifest commit) and
 //! printed, with the tally, by `cargo test --release --test torture -- --nocapture`.
 //!
+//! Each trial's directory also holds a user's files named like temporaries, which must
+//! survive every kill and resume (the stale-temporary cleanup deletes only its own).
+//!
 //! Reproduce one trial: `EYEADAPT_TORTURE_SEED=<seed> EYEADAPT_TORTURE_TRIALS=1`.
 mod common;
 
@@ -26,6 +29,12 @@ const ARGS: &[&str] = &["--frames", "0-11", "--width", "8", "--height", "6"];
 
 /// Files a run saves: 12 frames × (raw EXR, raw PNG, 8 adapted PNGs).
 const SAVED_LINES: u64 = 12 * 10;
+
+/// Files a user keeps in the output directory under names like the run's temporaries.
+const USER_FILES: [(&str, &str); 2] = [
+    (".notes.tmp-1", "user notes"),
+    ("mine/.frame_000001.png.tmp-2", "user image"),
+];
 
 fn sequence_cmd(out: &Path) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_eyeadapt"));
@@ -76,6 +85,8 @@ fn interrupted_in(dir: &Path) -> String {
             let p = e.path();
             if p.is_dir() {
                 stack.push(p);
+            } else if USER_FILES.iter().any(|(rel, _)| p.ends_with(rel)) {
+                continue;
             } else if let Some((name, _)) = e.file_name().to_string_lossy().split_once(".tmp-") {
                 // .frame_000003.png.tmp-PID -> "writing a png"; .manifest.json.tmp-PID
                 let kind = match name.rsplit_once('.') {
@@ -143,6 +154,11 @@ fn twenty_kills_at_random_moments_resume_to_identical_outputs() {
         let trial_seed = seed.wrapping_add(trial as u64);
         let mut rng = Rng(trial_seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
         let out = t.path().join(format!("trial{trial:02}"));
+        // A user's files that merely look like temporaries must outlive every kill and resume.
+        for (rel, text) in USER_FILES {
+            std::fs::create_dir_all(out.join(rel).parent().unwrap()).unwrap();
+            std::fs::write(out.join(rel), text).unwrap();
+        }
         // One kill, or two for about a third of the seeds (the second kills the resumed run).
         let kills = if trial_seed % 3 == 2 { 2 } else { 1 };
         let mut what = Vec::new();
@@ -198,6 +214,16 @@ fn twenty_kills_at_random_moments_resume_to_identical_outputs() {
             what.push(format!("{when}: {at}"));
         }
         run_to_end(&out);
+        for (rel, text) in USER_FILES {
+            let kept = std::fs::read_to_string(out.join(rel)).ok();
+            assert_eq!(
+                kept.as_deref(),
+                Some(text),
+                "trial {trial}: {rel} was deleted"
+            );
+            std::fs::remove_file(out.join(rel)).unwrap();
+        }
+        std::fs::remove_dir(out.join("mine")).unwrap();
         let got = snapshot(&out);
         let same_files = got.keys().eq(want.keys());
         let differing: Vec<&String> = want

@@ -195,6 +195,15 @@ fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
+fn parse_exposure(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v.abs() <= 30.0 => Ok(v),
+        _ => Err(format!(
+            "\"{s}\" is not a finite number of stops in [-30, 30]"
+        )),
+    }
+}
+
 fn parse_max_depth(s: &str) -> Result<i32, String> {
     let v: i32 = s
         .parse()
@@ -215,8 +224,8 @@ pub struct RenderArgs {
     /// Output directory.
     #[arg(long, default_value = "out/render")]
     pub out: PathBuf,
-    /// Preview exposure in stops (PNG only; the EXR is never scaled).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    /// Preview exposure in stops, -30 to 30 (PNG only; the EXR is never scaled).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = parse_exposure)]
     pub exposure: f32,
     /// Also write render statistics as JSON to this file.
     #[arg(long)]
@@ -255,16 +264,17 @@ pub struct BenchArgs {
     /// Scene to benchmark.
     #[arg(long, default_value = "builtin:cornell-box")]
     pub scene: String,
-    #[arg(long, default_value_t = 64)]
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=16_777_216))]
     pub spp: u32,
-    /// Image size (square).
-    #[arg(long, default_value_t = 256)]
+    /// Image size (square), 1 to 32768.
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=32768))]
     pub size: u32,
-    /// Mitsuba's max_depth.
-    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
+    /// Mitsuba's max_depth (-1 = unlimited, else 1 to 1024).
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true, value_parser = parse_max_depth)]
     pub max_depth: i32,
-    /// Timed repetitions (the median is reported).
-    #[arg(long, default_value_t = 3)]
+    /// Timed repetitions (the median is reported), 1 to 1000.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub runs: u32,
     /// Instead of rendering: build the BVH of a generated mesh of about this many triangles
     /// (a displaced terrain) and report build time, memory and ray throughput.

@@ -10,6 +10,13 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
         .camera
         .as_ref()
         .ok_or_else(|| Failure::Input("the bench scene has no camera".into()))?;
+    // The same memory check as a render, before the BVH is built.
+    eyeadapt_sequencer::resources::check_render(
+        &format!("the bench of {}", a.scene),
+        a.size,
+        a.size,
+        scene.triangle_count(),
+    )?;
     let t = Instant::now();
     let data = SceneData::new(&scene);
     let bvh = t.elapsed().as_secs_f64();
@@ -18,7 +25,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     view.height = a.size;
     let mut times = Vec::new();
     let mut samples = 0;
-    for run in 0..a.runs.max(1) {
+    for run in 0..a.runs {
         let s = RenderSettings {
             spp: a.spp,
             path: PathSettings {

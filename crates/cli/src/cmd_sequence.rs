@@ -30,15 +30,18 @@ pub(crate) fn selection(a: &SequenceArgs, job: &Job) -> Result<Option<FrameSet>,
     if let (Some(s), Some(e)) = (a.start, a.end) {
         // Clamp the end to the job (OpenCue's last #FRAME_END# can run past it).
         let last = job.frames.last().unwrap_or(0);
-        let e = e.min(last);
         if a.step == 0 {
             return Err(Failure::Input("--step must be at least 1".into()));
         }
         if s > e {
+            return Err(Failure::Input(format!("--start {s} is after --end {e}")));
+        }
+        if s > last {
             return Err(Failure::Input(format!(
                 "--start {s} is after the job's last frame {last}"
             )));
         }
+        let e = e.min(last);
         return FrameSet::from_start_end_step(s, e, a.step)
             .map(Some)
             .map_err(|e| Failure::Input(format!("--start/--end/--step: {e}")));

@@ -39,8 +39,8 @@ pub use crate::{
     },
     lab::{HUE_BRANCH_TOLERANCE_DEG, delta_e_2000, xyz_to_lab},
     series_metrics::{
-        DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MetricRow, SeriesError, SeriesMetrics,
-        SeriesParams, SeriesPoint, series_metrics,
+        DEFAULT_SIGMA_S, DEFAULT_THRESHOLDS, JumpCount, MAX_SIGMA_FRAMES, MetricRow, SeriesError,
+        SeriesMetrics, SeriesParams, SeriesPoint, series_metrics,
     },
     spaces::{
         D65_XY, D65_XYZ, M_RGB_TO_XYZ, M_XYZ_TO_RGB, delta_uv, luminance, luminance_f32,

@@ -35,6 +35,9 @@ use std::fmt;
 pub const DEFAULT_THRESHOLDS: [f64; 3] = [0.001, 0.004, 0.007];
 /// Gaussian σ in seconds for `hf_rms` (its −3 dB point is at about 0.27 Hz).
 pub const DEFAULT_SIGMA_S: f64 = 0.5;
+/// Widest smoothing Gaussian, σ in frames (σ_s·fps): its kernel has 2⌈3σ⌉+1 weights, so the
+/// bound keeps a huge σ_s or fps an error instead of an allocation that cannot succeed.
+pub const MAX_SIGMA_FRAMES: f64 = 100_000.0;
 
 /// One frame of an adaptation-colour series.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -179,6 +182,11 @@ impl SeriesMetrics {
 pub enum SeriesError {
     InvalidFps(f64),
     InvalidSigma(f64),
+    /// σ_s·fps is more than [`MAX_SIGMA_FRAMES`] frames.
+    SigmaTooWide {
+        sigma_s: f64,
+        fps: f64,
+    },
     InvalidThreshold(f64),
     /// Frame numbers must strictly increase; `index` is the offending point.
     FramesNotIncreasing {
@@ -198,6 +206,12 @@ impl fmt::Display for SeriesError {
                     "sigma_s must be a non-negative number of seconds, got {v}"
                 )
             }
+            SeriesError::SigmaTooWide { sigma_s, fps } => write!(
+                f,
+                "sigma_s {sigma_s:e} s at {fps} fps is a Gaussian of σ = {:e} frames, more than the \
+                 {MAX_SIGMA_FRAMES} frames a series is smoothed with",
+                sigma_s * fps
+            ),
             SeriesError::InvalidThreshold(v) => {
                 write!(f, "jump threshold must be a non-negative number, got {v}")
             }
@@ -225,6 +239,12 @@ pub fn series_metrics(
     }
     if !(params.sigma_s.is_finite() && params.sigma_s >= 0.0) {
         return Err(SeriesError::InvalidSigma(params.sigma_s));
+    }
+    if params.sigma_s * params.fps > MAX_SIGMA_FRAMES {
+        return Err(SeriesError::SigmaTooWide {
+            sigma_s: params.sigma_s,
+            fps: params.fps,
+        });
     }
     if let Some(&bad) = params
         .thresholds
@@ -701,6 +721,12 @@ mod tests {
         assert_eq!(
             with(|p| p.sigma_s = -1.0),
             "sigma_s must be a non-negative number of seconds, got -1"
+        );
+        // A window too wide to allocate is refused before the kernel is built.
+        assert!(
+            with(|p| p.sigma_s = 1e18).contains("σ = 2.4e19 frames, more than the 100000"),
+            "{}",
+            with(|p| p.sigma_s = 1e18)
         );
         assert_eq!(
             with(|p| p.thresholds = vec![f64::NAN]),

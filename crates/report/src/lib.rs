@@ -4,9 +4,13 @@
 //! Steps:
 //! 1. read `manifest.json` and `adaptation.csv`; rows whose estimator contains `+` were derived
 //!    by an earlier report and are dropped (and recomputed);
+//!    The committed frames' rows must be exactly their record in `rows/` (checksummed in the
+//!    manifest): a cut or edited CSV is refused (exit 2), as is any bad input below, before
+//!    anything is written;
 //! 2. apply the job's temporal filters (`settings.temporal_filters`) to every estimator's
-//!    series, and rewrite `adaptation.csv` atomically: the committed frames' rows first, as
-//!    they were, then the derived rows `<estimator>+<preset>` (same columns);
+//!    series; `adaptation.csv` is rewritten atomically with the other files (step 4): the
+//!    committed frames' rows first, as they were, then the derived rows
+//!    `<estimator>+<preset>` (same columns);
 //! 3. §7.2 metrics of every series (raw and filtered), and §7.3 metrics of the adapted image
 //!    sequence, reading the raw EXRs (CAT from the logged whites with the job's `cat` and
 //!    `degree`; undefined whites adapt with D65, as the sequencer does);
@@ -127,15 +131,17 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
     // 1. The CSV.
     opts.step("adaptation.csv and temporal filters", None);
     let csv_path = dir.join(CSV);
-    let text = std::fs::read_to_string(&csv_path)
-        .map_err(|e| Failure::io("cannot read", &csv_path, &e))?;
+    let text = eyeadapt_scene::read_input_text(&csv_path)
+        .map_err(|e| Failure::input_io("cannot read", &csv_path, &e))?;
     let committed: BTreeSet<u32> = m.frames.keys().copied().collect();
     let tab = table::parse(&text, &csv_path, &committed)?;
+    table::check_committed(&tab, dir, &m, &csv_path)?;
     let base = series::base_series(&m, &tab);
     table_notes(&tab, &base, &mut notes);
 
-    // 2. Filters, and the CSV rewritten with the derived rows.
-    let (all, derived_rows) = filter_and_rewrite(&csv_path, &text, &tab, &base, &presets)?;
+    // 2. Filters, and the CSV text with the derived rows (written with the other files, once
+    // every input has been read and checked).
+    let (all, derived_rows, csv) = filter_series(&text, &tab, &base, &presets)?;
 
     // 3. Metrics.
     let on_frame = |done, total| opts.step("image metrics (raw EXRs)", Some((done, total)));
@@ -159,10 +165,11 @@ pub fn report(dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, Failure
         });
     }
 
-    // 4. Files.
+    // 4. Files: nothing is written before this point.
     opts.step("plots and report.html", None);
     let files = write_files(
         dir,
+        csv.as_deref(),
         &Written {
             manifest: &m,
             all: &all,
@@ -202,6 +209,12 @@ fn checked_manifest(dir: &Path, opts: &ReportOptions) -> Result<Manifest, Failur
             opts.sigma_s
         )));
     }
+    if dir.exists() && !dir.is_dir() {
+        return Err(Failure::Input(format!(
+            "{} is not a directory: report takes a sequence output directory (with manifest.json)",
+            dir.display()
+        )));
+    }
     let m = Manifest::load(dir)?.ok_or_else(|| {
         Failure::Input(format!(
             "{}: no manifest.json (not an eyeadapt sequence output)",
@@ -214,10 +227,32 @@ fn checked_manifest(dir: &Path, opts: &ReportOptions) -> Result<Manifest, Failur
             dir.display()
         )));
     }
+    let file = dir.join(eyeadapt_sequencer::manifest::MANIFEST);
     if !(m.fps.is_finite() && m.fps > 0.0) {
         return Err(Failure::Input(format!(
-            "manifest fps {} is not positive",
+            "{}: manifest fps {} is not positive",
+            file.display(),
             m.fps
+        )));
+    }
+    if m.fps > eyeadapt_scene::MAX_FPS {
+        return Err(Failure::Input(format!(
+            "{}: manifest fps {:e} is above the {} a sequence may have",
+            file.display(),
+            m.fps,
+            eyeadapt_scene::MAX_FPS
+        )));
+    }
+    // The smoothing window (σ·fps frames) is allocated: bound it before anything is read.
+    if opts.sigma_s * m.fps > eyeadapt_color::MAX_SIGMA_FRAMES {
+        return Err(Failure::Input(format!(
+            "--sigma-s {:e} s at the sequence's {} fps ({}) is a Gaussian of σ = {:e} frames, \
+             more than the {} frames the report smooths with",
+            opts.sigma_s,
+            m.fps,
+            file.display(),
+            opts.sigma_s * m.fps,
+            eyeadapt_color::MAX_SIGMA_FRAMES
         )));
     }
     Ok(m)
@@ -250,15 +285,14 @@ fn table_notes(tab: &table::Table, base: &[Series], notes: &mut Vec<String>) {
     }
 }
 
-/// Every series, raw then filtered, and the number of derived rows; rewrites the CSV (only
-/// when it changes) with the committed rows first, as they were, then the derived rows.
-fn filter_and_rewrite(
-    csv_path: &Path,
+/// Every series, raw then filtered, the number of derived rows, and the new CSV text (the
+/// committed rows first, as they were, then the derived rows) when it differs from `text`.
+fn filter_series(
     text: &str,
     tab: &table::Table,
     base: &[Series],
     presets: &[TemporalFilter],
-) -> Result<(Vec<Series>, usize), Failure> {
+) -> Result<(Vec<Series>, usize, Option<String>), Failure> {
     let mut all = base.to_vec();
     let mut derived: Vec<(u32, usize, String)> = Vec::new();
     for f in presets {
@@ -280,10 +314,8 @@ fn filter_and_rewrite(
     for (_, _, r) in &derived {
         csv.push_str(r);
     }
-    if csv != text {
-        atomic_write_bytes(csv_path, csv.as_bytes())?;
-    }
-    Ok((all, derived.len()))
+    let n = derived.len();
+    Ok((all, n, (csv != text).then_some(csv)))
 }
 
 /// What the report's files are made of.
@@ -297,10 +329,25 @@ struct Written<'a> {
     sigma_s: f64,
 }
 
-/// Writes coherence.csv, coherence_frames.csv, the plots and report.html; returns their
-/// paths relative to `dir`.
-fn write_files(dir: &Path, w: &Written) -> Result<Vec<String>, Failure> {
+/// Writes adaptation.csv (when `csv` is new text for it), coherence.csv,
+/// coherence_frames.csv, the plots and report.html, all computed before the first write;
+/// returns the paths of the report's files relative to `dir`.
+fn write_files(dir: &Path, csv: Option<&str>, w: &Written) -> Result<Vec<String>, Failure> {
     let (m, all, reports) = (w.manifest, w.all, w.reports);
+    let filters: Vec<String> = w.presets.iter().map(|f| f.to_string()).collect();
+    let figures = plots::figures(all, reports, &filters, m.fps, w.image.is_some())?;
+    let page = html::page(&html::Page {
+        manifest: m,
+        reports,
+        plots: &figures,
+        notes: w.notes,
+        y_n: w.image.map(|p| p.y_n),
+        omega: w.image.map(|p| (p.width, p.height, p.omega_pixels)),
+        sigma_s: w.sigma_s,
+    });
+    if let Some(csv) = csv {
+        atomic_write_bytes(&dir.join(CSV), csv.as_bytes())?;
+    }
     let mut files = Vec::new();
     let mut put = |rel: &str, bytes: &[u8]| -> Result<(), Failure> {
         atomic_write_bytes(&dir.join(rel), bytes)?;
@@ -315,20 +362,9 @@ fn write_files(dir: &Path, w: &Written) -> Result<Vec<String>, Failure> {
         "coherence_frames.csv",
         coherence::frames_csv(all, reports).as_bytes(),
     )?;
-    let filters: Vec<String> = w.presets.iter().map(|f| f.to_string()).collect();
-    let figures = plots::figures(all, reports, &filters, m.fps, w.image.is_some())?;
     for f in &figures {
         put(&format!("plots/{}.svg", f.file), f.svg.as_bytes())?;
     }
-    let page = html::page(&html::Page {
-        manifest: m,
-        reports,
-        plots: &figures,
-        notes: w.notes,
-        y_n: w.image.map(|p| p.y_n),
-        omega: w.image.map(|p| (p.width, p.height, p.omega_pixels)),
-        sigma_s: w.sigma_s,
-    });
     put("report.html", page.as_bytes())?;
     Ok(files)
 }

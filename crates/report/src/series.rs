@@ -247,6 +247,20 @@ pub fn image_pass(
             missing[0]
         )));
     }
+    // Every frame is checked against its record before any is decoded.
+    for (f, rel) in &paths {
+        let entry = m.frames[f].files.iter().find(|e| &e.path == rel);
+        let p = dir.join(rel);
+        let len = eyeadapt_scene::check_input(&p)
+            .map_err(|e| Failure::input_io("cannot read raw EXR", &p, &e))?;
+        if let Some(e) = entry.filter(|e| e.bytes != len) {
+            return Err(Failure::Input(format!(
+                "{}: frame {f}'s raw EXR is {len} bytes but manifest.json records {} (damaged)",
+                p.display(),
+                e.bytes
+            )));
+        }
+    }
     type Pixels = (Vec<[f32; 3]>, Vec<f32>);
     let read = |rel: &str| -> Result<(usize, usize, Pixels), Failure> {
         let fr = read_exr(&dir.join(rel))?;

@@ -3,7 +3,9 @@
 //! the same schema.
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::{CSV_HEADER, num};
-use std::collections::BTreeSet;
+use eyeadapt_sequencer::manifest::{Manifest, checksum};
+use eyeadapt_sequencer::pipeline::frame_name;
+use std::collections::{BTreeSet, HashMap};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -119,6 +121,60 @@ pub fn parse(text: &str, source: &Path, committed: &BTreeSet<u32>) -> Result<Tab
         });
     }
     Ok(table)
+}
+
+/// Checks the table against the sequence's record: the rows of every committed frame must be
+/// exactly that frame's `rows/frame_NNNNNN.csv` (whose size and checksum the manifest holds),
+/// so a CSV whose rows were cut, edited or added for a committed frame is refused, naming the
+/// frames, instead of giving other metrics. `source` is the CSV, for messages.
+pub fn check_committed(
+    tab: &Table,
+    dir: &Path,
+    m: &Manifest,
+    source: &Path,
+) -> Result<(), Failure> {
+    let mut have: HashMap<u32, Vec<&str>> = HashMap::new();
+    for r in &tab.rows {
+        have.entry(r.frame).or_default().push(&r.line);
+    }
+    let mut differ = Vec::new();
+    for (f, e) in &m.frames {
+        let rel = format!("rows/{}", frame_name(*f, "csv"));
+        let Some(entry) = e.files.iter().find(|fe| fe.path == rel) else {
+            continue;
+        };
+        let p = dir.join(&rel);
+        let bytes = eyeadapt_scene::read_input(&p)
+            .map_err(|e| Failure::input_io("cannot read committed rows", &p, &e))?;
+        if bytes.len() as u64 != entry.bytes || checksum(&bytes) != entry.sha256_128 {
+            return Err(Failure::Input(format!(
+                "{}: frame {f}'s rows are not the ones committed (size or checksum differs from \
+                 manifest.json)",
+                p.display()
+            )));
+        }
+        let text = String::from_utf8_lossy(&bytes);
+        let mut want: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty()).collect();
+        let mut got = have.remove(f).unwrap_or_default();
+        want.sort_unstable();
+        got.sort_unstable();
+        if want != got {
+            differ.push(*f);
+        }
+    }
+    if differ.is_empty() {
+        return Ok(());
+    }
+    let list: Vec<String> = differ.iter().take(10).map(u32::to_string).collect();
+    Err(Failure::Input(format!(
+        "{}: the rows of {} committed frame(s) ({}{}) differ from their record in rows/ \
+         (checksummed in manifest.json): the file was cut or edited. Running the job's \
+         `eyeadapt sequence` on this directory again rebuilds it from rows/",
+        source.display(),
+        differ.len(),
+        list.join(", "),
+        if differ.len() > 10 { ", …" } else { "" }
+    )))
 }
 
 /// One derived row (with its newline), in [`CSV_HEADER`]'s columns: the filtered white

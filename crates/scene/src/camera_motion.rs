@@ -18,6 +18,11 @@ pub const DEFAULT_FPS: f64 = 24.0;
 /// per-frame allocation keeps a typo such as `fps = 1e9` a clear error, not an abort.
 pub const MAX_FRAMES: usize = 10_368_000;
 
+/// Highest frame rate of a sequence. Far above any film or high-speed capture a path tracer
+/// renders; it bounds what is computed from the rate (frame counts, the report's smoothing
+/// window of σ·fps frames), so that `fps = 1e9` is an error, not a 16 GB allocation.
+pub const MAX_FPS: f64 = 10_000.0;
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum CameraMotion {
     Keyframes(CameraPath),
@@ -66,11 +71,18 @@ impl CameraMotion {
     }
 
     /// Why the motion cannot be rendered as a sequence, if it cannot: a frame rate that is not
-    /// a positive finite number, or more than [`MAX_FRAMES`] frames.
+    /// a positive number up to [`MAX_FPS`], more than [`MAX_FRAMES`] frames, or a frame whose
+    /// camera is not finite in single precision (the renderer's) after the path's arithmetic.
     pub fn check(&self) -> Result<(), String> {
         let fps = self.fps();
         if !(fps.is_finite() && fps > 0.0) {
-            return Err(format!("fps = {fps} is not a positive number"));
+            return Err(format!("fps = {} is not a positive number", short(fps)));
+        }
+        if fps > MAX_FPS {
+            return Err(format!(
+                "fps = {} is above the {MAX_FPS} a sequence may have",
+                short(fps)
+            ));
         }
         let end = match self {
             CameraMotion::Keyframes(p) => {
@@ -83,10 +95,37 @@ impl CameraMotion {
         let frames = end.max(0.0) * fps;
         if !frames.is_finite() || frames >= MAX_FRAMES as f64 {
             return Err(format!(
-                "{end} s at {fps} fps is {frames:.0} frames, more than the {MAX_FRAMES} a sequence may have"
+                "{} s at {} fps is {} frames, more than the {MAX_FRAMES} a sequence may have",
+                short(end),
+                short(fps),
+                short(frames.floor())
             ));
         }
+        for f in 0..self.frame_count() {
+            let t = self.frame_time(f);
+            let pose = self.sample(t);
+            let single = |v: glam::DVec3| v.as_vec3().is_finite();
+            if !(single(pose.position) && single(pose.forward) && single(pose.up)) {
+                return Err(format!(
+                    "the camera of frame {f} (t = {} s) is not finite in single precision: \
+                     position {:?}, forward {:?}, up {:?} (coordinates must stay within ±3.4e38)",
+                    short(t),
+                    pose.position.to_array(),
+                    pose.forward.to_array(),
+                    pose.up.to_array()
+                ));
+            }
+        }
         Ok(())
+    }
+}
+
+/// A number for a message: as it is when short, in scientific notation when huge or tiny.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 

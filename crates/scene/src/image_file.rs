@@ -19,15 +19,18 @@ pub fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
+/// Most texels a texture may have, bitmap or glTF image (16384², 3 GiB as linear f32).
+pub const MAX_TEXELS: u64 = 1 << 28;
+
 /// Decodes `path`; the message names the file and what is wrong with it.
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
     let file = crate::open_input(path)
         .map_err(|e| format!("cannot read image {}: {e}", path.display()))?;
-    // The extension's format unless the content says otherwise (as `ImageReader::open`
-    // does), so that a `.png` holding junk is a decoding error, not an unknown format.
+    // The extension names the format (as `ImageReader::open` does) unless the content says
+    // otherwise.
     let mut reader = ImageReader::new(std::io::BufReader::new(file));
-    if let Ok(f) = image::ImageFormat::from_path(path) {
-        reader.set_format(f);
+    if let Ok(format) = image::ImageFormat::from_path(path) {
+        reader.set_format(format);
     }
     let reader = reader
         .with_guessed_format()
@@ -40,9 +43,24 @@ pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
             path.display()
         ));
     }
+    let too_large = |w: u32, h: u32| {
+        format!(
+            "texture file {} is {w}x{h} pixels, more than the {MAX_TEXELS} texels a texture may have",
+            path.display()
+        )
+    };
+    // The decoder allocates at most `image`'s default 512 MiB; a header asking for more is a
+    // Limits error, told with the size the header claims.
     let img = reader
         .decode()
-        .map_err(|e| format!("cannot decode texture file {}: {e}", path.display()))?;
+        .map_err(|e| match (&e, image::image_dimensions(path)) {
+            (image::ImageError::Limits(_), Ok((w, h))) => too_large(w, h),
+            _ => format!("cannot decode texture file {}: {e}", path.display()),
+        })?;
+    // Linear f32 texels take 12 bytes each, up to 24 times the decoded bytes.
+    if img.width() as u64 * img.height() as u64 > MAX_TEXELS {
+        return Err(too_large(img.width(), img.height()));
+    }
     let float = matches!(
         img,
         DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_)

@@ -104,7 +104,7 @@ pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
 /// The text of the regular file `path` (UTF-8, else `InvalidData`).
 pub fn read_input_text(path: &Path) -> io::Result<String> {
     String::from_utf8(read_input(path)?)
-        .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "not UTF-8 text"))
+        .map_err(|_| io::Error::new(io::ErrorKind::InvalidData, "not valid UTF-8 text"))
 }
 
 /// Checks that `path` is a regular file and returns its size, for readers that open the file

@@ -10,6 +10,8 @@
 //! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
 //! reports all of them at once ([`SceneError`]). Warnings (a missing MTL, an unknown material)
 //! do not stop loading: the affected triangles get the loud [`Material::error`] material.
+//! Every file a scene names is opened through [`open_input`], which reads regular files only
+//! (a FIFO or device is an error naming it, never a read that blocks or does not end).
 //!
 //! Units: lengths are arbitrary scene units; colours are linear sRGB (Rec. 709 primaries, D65
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
@@ -44,7 +46,7 @@ mod transform;
 pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
 pub use crate::camera::Camera;
-pub use crate::camera_motion::{CameraMotion, DEFAULT_FPS, MAX_FRAMES};
+pub use crate::camera_motion::{CameraMotion, DEFAULT_FPS, MAX_FPS, MAX_FRAMES};
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};
 pub use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};

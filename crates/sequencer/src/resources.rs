@@ -13,14 +13,17 @@
 //!   (BVH2 then CWBVH), the BVH-ordered triangles and the per-slot shading data. Measured:
 //!   454 B per triangle from 0.33 M to 2.6 M triangles (147 MB → 1.14 GB).
 //!
-//! The limit is physical memory: `MemTotal` from `/proc/meminfo`, lowered by the cgroup v2
-//! `memory.max` of this process (a Slurm or container limit) when there is one. Swap is not
-//! counted: a path tracer paging to swap does not finish. A request above the limit can never
-//! run here, whatever else the machine does: [`Failure::Input`] (exit 2). A request within the
-//! limit but above `MemAvailable` (memory in use by other processes right now) is
-//! [`Failure::Transient`] (exit 75): a retry, later or on another node, can succeed. Where
-//! `/proc/meminfo` cannot be read (not Linux) nothing is checked.
+//! The limit is the least of: physical memory (`MemTotal` from `/proc/meminfo`); the memory
+//! limit of this process's cgroup and of every cgroup above it (v2 `memory.max`, v1
+//! `memory.limit_in_bytes`: a Slurm or container limit); and the address space still free
+//! under `ulimit -v` (`RLIMIT_AS` from `/proc/self/limits`, less the `VmSize` already mapped).
+//! Swap is not counted: a path tracer paging to swap does not finish. A request above the
+//! limit can never run here, whatever else the machine does: [`Failure::Input`] (exit 2). A
+//! request within the limit but above `MemAvailable` (memory in use by other processes right
+//! now) is [`Failure::Transient`] (exit 75): a retry, later or on another node, can succeed.
+//! Where `/proc/meminfo` cannot be read (not Linux) nothing is checked.
 use crate::error::Failure;
+use std::path::{Path, PathBuf};
 
 /// Peak bytes per pixel of one frame in flight (accumulators, AOVs, one output copy).
 pub const BYTES_PER_PIXEL: u64 = 256;
@@ -62,26 +65,36 @@ pub struct Memory {
     pub total: u64,
     /// `MemAvailable`.
     pub available: u64,
-    /// The cgroup v2 `memory.max` of this process, when it is not `max`.
+    /// The lowest cgroup memory limit of this process's cgroup and its ancestors, if any.
     pub cgroup_limit: Option<u64>,
+    /// `ulimit -v` (the soft `RLIMIT_AS`) and the address space already mapped (`VmSize`),
+    /// when there is such a limit.
+    pub address_space: Option<(u64, u64)>,
 }
 
 impl Memory {
-    /// Reads `/proc/meminfo` and this process's cgroup limit; `None` where there is no
+    /// Reads `/proc/meminfo`, the cgroup limits and `RLIMIT_AS`; `None` where there is no
     /// `/proc/meminfo`.
     pub fn current() -> Option<Memory> {
         let text = std::fs::read_to_string("/proc/meminfo").ok()?;
         let (total, available) = parse_meminfo(&text)?;
+        let cgroups = std::fs::read_to_string("/proc/self/cgroup").unwrap_or_default();
         Some(Memory {
             total,
             available,
-            cgroup_limit: cgroup_limit(),
+            cgroup_limit: cgroup_limit(Path::new("/sys/fs/cgroup"), &cgroups),
+            address_space: address_space(),
         })
     }
 
-    /// The most a render may use: physical memory or the cgroup limit, whichever is lower.
+    /// The most a render may use: physical memory, the cgroup limit or the free address
+    /// space, whichever is lowest.
     pub fn limit(&self) -> u64 {
-        self.cgroup_limit.map_or(self.total, |c| c.min(self.total))
+        let mut limit = self.cgroup_limit.map_or(self.total, |c| c.min(self.total));
+        if let Some((max, used)) = self.address_space {
+            limit = limit.min(max.saturating_sub(used));
+        }
+        limit
     }
 }
 
@@ -99,14 +112,67 @@ pub fn parse_meminfo(text: &str) -> Option<(u64, u64)> {
     Some((total, available))
 }
 
-/// `memory.max` of this process's cgroup (v2), if set.
-fn cgroup_limit() -> Option<u64> {
-    let cg = std::fs::read_to_string("/proc/self/cgroup").ok()?;
-    let rel = cg.lines().find_map(|l| l.strip_prefix("0::"))?;
-    let p = std::path::Path::new("/sys/fs/cgroup")
-        .join(rel.trim_start_matches('/'))
-        .join("memory.max");
-    std::fs::read_to_string(p).ok()?.trim().parse().ok()
+/// The lowest memory limit over this process's cgroups (`cgroups`: the text of
+/// `/proc/self/cgroup`) and all their ancestors, under the cgroup mount `root`: v2's
+/// `memory.max` (the `0::` line; the unified tree at `root` or `root/unified`) and v1's
+/// `memory.limit_in_bytes` (the line whose controllers include `memory`, under `root/memory`).
+/// `max` and unreadable files are no limit.
+pub fn cgroup_limit(root: &Path, cgroups: &str) -> Option<u64> {
+    let mut found: Option<u64> = None;
+    let mut look = |base: PathBuf, rel: &str, file: &str| {
+        let mut dir = base.join(rel.trim_start_matches('/'));
+        loop {
+            if let Some(v) = std::fs::read_to_string(dir.join(file))
+                .ok()
+                .and_then(|t| t.trim().parse::<u64>().ok())
+            {
+                found = Some(found.map_or(v, |f| f.min(v)));
+            }
+            if dir == base || !dir.pop() || !dir.starts_with(&base) {
+                break;
+            }
+        }
+    };
+    for line in cgroups.lines() {
+        let mut parts = line.splitn(3, ':');
+        let (Some(_), Some(controllers), Some(rel)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
+        if controllers.is_empty() {
+            look(root.to_path_buf(), rel, "memory.max");
+            look(root.join("unified"), rel, "memory.max");
+        } else if controllers.split(',').any(|c| c == "memory") {
+            look(root.join("memory"), rel, "memory.limit_in_bytes");
+        }
+    }
+    found
+}
+
+/// (`ulimit -v` in bytes, `VmSize` in bytes) when the address space is limited.
+fn address_space() -> Option<(u64, u64)> {
+    let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+    let max = parse_address_limit(&limits)?;
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let used = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmSize:"))
+        .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
+        .map_or(0, |kib| kib.saturating_mul(1024));
+    Some((max, used))
+}
+
+/// The soft limit of `Max address space` in the text of `/proc/self/limits` (bytes), if it is
+/// not `unlimited`.
+pub fn parse_address_limit(limits: &str) -> Option<u64> {
+    let line = limits
+        .lines()
+        .find(|l| l.starts_with("Max address space"))?;
+    line["Max address space".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 fn gib(bytes: u64) -> String {
@@ -129,8 +195,15 @@ pub fn check_estimate(what: &str, e: &Estimate, mem: &Memory) -> Result<(), Fail
     };
     let limit = mem.limit();
     if e.total > limit {
-        let source = match mem.cgroup_limit {
-            Some(c) if c < mem.total => format!(
+        let source = match (mem.cgroup_limit, mem.address_space) {
+            (_, Some((max, used))) if max.saturating_sub(used) == limit => format!(
+                "the address-space limit (ulimit -v) is {} of which {} is mapped already \
+                 (MemTotal {} in /proc/meminfo)",
+                gib(max),
+                gib(used),
+                gib(mem.total)
+            ),
+            (Some(c), _) if c < mem.total => format!(
                 "the cgroup memory limit is {} (MemTotal {} in /proc/meminfo)",
                 gib(c),
                 gib(mem.total)
@@ -177,6 +250,7 @@ mod tests {
             total,
             available,
             cgroup_limit: None,
+            address_space: None,
         }
     }
 
@@ -235,6 +309,51 @@ mod tests {
             f.to_string().contains("cgroup memory limit is 2.0 GiB"),
             "{f}"
         );
+    }
+
+    #[test]
+    fn ulimit_v_is_a_limit_less_what_is_mapped_already() {
+        let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
+                      Max stack size            8388608              unlimited            bytes     \n\
+                      Max address space         1610612736           unlimited            bytes     \n";
+        assert_eq!(parse_address_limit(limits), Some(1_610_612_736));
+        assert_eq!(
+            parse_address_limit(
+                "Max address space         unlimited            unlimited            bytes"
+            ),
+            None
+        );
+        let m = Memory {
+            address_space: Some((1_610_612_736, 100 << 20)),
+            ..mem()
+        };
+        assert_eq!(m.limit(), 1_610_612_736 - (100 << 20));
+        let f = check_estimate("the render", &estimate(4096, 4096, 0), &m).unwrap_err();
+        assert_eq!(f.exit_code(), 2);
+        assert!(f.to_string().contains("ulimit -v"), "{f}");
+    }
+
+    #[test]
+    fn cgroup_limits_of_v1_and_v2_and_their_ancestors_count() {
+        let d = tempfile::tempdir().unwrap();
+        let root = d.path();
+        let put = |rel: &str, v: &str| {
+            let p = root.join(rel);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(p, v).unwrap();
+        };
+        // v2: the job's own cgroup has no limit, its parent (a Slurm job step's) has one.
+        put("slurm/job_7/memory.max", "2147483648\n");
+        put("slurm/job_7/step_0/memory.max", "max\n");
+        assert_eq!(
+            cgroup_limit(root, "0::/slurm/job_7/step_0\n"),
+            Some(2 << 30)
+        );
+        // v1 (this machine's hybrid layout): the memory controller's tree.
+        put("memory/box/memory.limit_in_bytes", "1073741824\n");
+        let hybrid = "4:memory:/box\n1:cpu,cpuacct:/\n0::/\n";
+        assert_eq!(cgroup_limit(root, hybrid), Some(1 << 30));
+        assert_eq!(cgroup_limit(root, "0::/elsewhere\n"), None);
     }
 
     #[test]

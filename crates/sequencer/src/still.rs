@@ -134,6 +134,20 @@ pub fn prepare_out_dir(dir: &Path) -> Result<(), Failure> {
             )
         }));
     }
+    // A symbolic link that points nowhere (the path or an ancestor): create_dir_all would
+    // fail with "file exists"; say what it is.
+    if let Some(link) = dir
+        .ancestors()
+        .find(|a| a.is_symlink() && std::fs::metadata(a).is_err())
+    {
+        let target = std::fs::read_link(link).unwrap_or_default();
+        return Err(Failure::Input(format!(
+            "output path {}: {} is a symbolic link to {}, which does not exist",
+            dir.display(),
+            link.display(),
+            target.display()
+        )));
+    }
     if dir.exists() && !dir.is_dir() {
         return Err(Failure::Input(format!(
             "output path {} exists and is not a directory",

@@ -3,6 +3,7 @@
 //! Triangles are copied into BVH order once (obvhs reports *slots*, not triangle indices), and
 //! per-slot ids live in a parallel array, so the hot loop never looks anything up through
 //! `primitive_indices`. [`crate::geometry`] puts these together into the scene's two levels.
+use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -90,8 +91,7 @@ impl Accel {
         let mut kept = Vec::with_capacity(input.len());
         let mut degenerate = 0;
         for t in input {
-            let n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
-            if n.length_squared() > 0.0 && n.is_finite() {
+            if normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0]).is_some() {
                 kept.push(t);
             } else {
                 degenerate += 1;
@@ -116,7 +116,9 @@ impl Accel {
             let t = kept[i as usize];
             bvh_tris.push(RtTriangle::from(&tris[i as usize]));
             info.push(TriInfo {
-                ng: (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).normalize(),
+                ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
+                    .expect("kept triangles have an area")
+                    .0,
                 instance: t.instance,
                 prim: t.prim,
             });

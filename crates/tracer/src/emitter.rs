@@ -137,11 +137,17 @@ impl AreaTri {
         let e2 = v[2] - v[0];
         let c = e1.cross(e2);
         let area = 0.5 * c.length();
-        (area > 0.0 && area.is_finite()).then(|| AreaTri {
+        let (n, area) = if area.is_finite() {
+            (c / (2.0 * area), area)
+        } else {
+            // |c|² overflows for edges of 1e10 and more: scaled edges give both.
+            crate::triangle::normal_and_area(e1, e2)?
+        };
+        (area > 0.0 && area.is_finite()).then_some(AreaTri {
             v0: v[0],
             e1,
             e2,
-            n: c / (2.0 * area),
+            n,
             area,
             emission,
         })

@@ -6,8 +6,47 @@
 //! Here the barycentric and distance tests compare the undivided numerators against det's sign
 //! and magnitude, and only a hit divides. The tests are the same inequalities, so hits agree
 //! with obvhs's except where a barycentric coordinate or t sits within rounding of its bound.
+use glam::Vec3A;
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
+
+/// The unit normal (direction `e1 × e2`) and the area of the triangle with edges `e1`, `e2`,
+/// or `None` when it has no area or is not finite. Where the cross product's squared length
+/// fits in f32 this is `(c.normalize(), |c|/2)` of `c = e1 × e2`, as always. Beyond (edges of
+/// 1e10 give a cross product of 1e20 whose square, 1e40, is infinite, and the normal came out
+/// zero: the surface rendered black) both come from the edges scaled to at most 1 in every
+/// component; the area itself is infinite past edges of about 2.6e19.
+pub fn normal_and_area(e1: Vec3A, e2: Vec3A) -> Option<(Vec3A, f32)> {
+    let c = e1.cross(e2);
+    let len2 = c.length_squared();
+    if len2.is_finite() {
+        return (len2 > 0.0 && c.is_finite()).then(|| (c.normalize(), 0.5 * c.length()));
+    }
+    let s = e1.abs().max_element().max(e2.abs().max_element());
+    if !s.is_finite() {
+        return None;
+    }
+    let c = (e1 / s).cross(e2 / s);
+    let len = c.length();
+    (len > 0.0).then(|| (c / len, 0.5 * len * s * s))
+}
+
+#[cfg(test)]
+mod normal_tests {
+    use super::*;
+
+    #[test]
+    fn long_edges_keep_their_normal_and_area() {
+        let (n, a) =
+            normal_and_area(Vec3A::new(1e10, 0.0, 0.0), Vec3A::new(0.0, 0.0, -1e10)).unwrap();
+        assert_eq!(n, Vec3A::Y);
+        assert!((a / 5e19 - 1.0).abs() < 1e-6, "{a}");
+        let (n, a) = normal_and_area(Vec3A::X, Vec3A::Y).unwrap();
+        assert_eq!((n, a), (Vec3A::Z, 0.5));
+        assert!(normal_and_area(Vec3A::X, Vec3A::X * 2.0).is_none());
+        assert!(normal_and_area(Vec3A::X * f32::INFINITY, Vec3A::Y).is_none());
+    }
+}
 
 const SIGN: u32 = 0x8000_0000;
 

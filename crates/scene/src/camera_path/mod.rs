@@ -183,13 +183,31 @@ impl CameraPath {
                     ),
                 );
             }
-            if !k.position.is_finite() {
-                problem(at, format!("position {} is not finite", k.position));
+            // Keyframes are f64 but the renderer's rays are f32: beyond ±3.4e38 a coordinate
+            // turns infinite (and its square overflows long before in the direction's length).
+            let single = |v: DVec3| v.as_vec3().is_finite();
+            if !single(k.position) {
+                problem(
+                    at,
+                    format!(
+                        "position {:?} is not finite in single precision (coordinates must stay within ±3.4e38)",
+                        k.position.to_array()
+                    ),
+                );
             }
             match k.orientation {
                 Orientation::LookAt { look_at, up } => {
-                    if !look_at.is_finite() || !up.is_finite() {
-                        problem(at, format!("look_at {look_at} / up {up} is not finite"));
+                    if !single(look_at) || !single(up) {
+                        problem(
+                            at,
+                            format!(
+                                "look_at {:?} / up {:?} is not finite in single precision (coordinates must stay within ±3.4e38)",
+                                look_at.to_array(),
+                                up.to_array()
+                            ),
+                        );
+                    } else if !single(k.position) {
+                        // Reported above; the view direction cannot be judged from it.
                     } else if (look_at - k.position).try_normalize().is_none() {
                         problem(at, format!("look_at {look_at} equals the position"));
                     } else if up.try_normalize().is_none() {

@@ -500,7 +500,7 @@ fn validation_reports_every_problem() {
         "camera_path.keyframes[1]: time 0 s must be after the previous keyframe's 0 s",
         "camera_path.keyframes[1]: up [0, 1, 0] is parallel to the view direction",
         "camera_path.keyframes[2]: time must be finite, got NaN",
-        "camera_path.keyframes[2]: position [0, inf, 0] is not finite",
+        "camera_path.keyframes[2]: position [0.0, inf, 0.0] is not finite in single precision (coordinates must stay within ±3.4e38)",
         "camera_path.keyframes[2]: pitch_deg 95 is outside [-90, 90]",
         "camera_path.keyframes[3]: fov_deg 0 is outside (0, 180)",
     ];

@@ -17,14 +17,13 @@
 //! `to_uv`; the transformed coordinates are in glTF's convention, which is the scene's
 //! ((0, 0) the image's top-left corner, v down).
 use super::read::{GltfFile, at, check_regular, uri_to_path};
+// Largest decoded image accepted: the bitmap textures' bound, so that a hostile header cannot
+// ask for more memory than the machine has.
+use crate::image_file::MAX_TEXELS;
 use crate::{Bitmap, Diagnostic, FilterType, Image, Rgb, Scene, Texture, TextureId, WrapMode};
 use glam::{Affine2, Mat2, Vec2};
 use std::collections::HashMap;
 use std::sync::Arc;
-
-/// Largest decoded image accepted (texels), so that a hostile header cannot ask for more
-/// memory than the machine has: 16k × 16k.
-const MAX_TEXELS: u64 = 1 << 28;
 
 /// How a material reads an image.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
