@@ -8,8 +8,8 @@
 //! make a resume refuse, never mix scenes.
 use crate::{
     Bitmap, Bsdf, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light,
-    Material, Mesh, Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform,
-    WrapMode,
+    Material, Mesh, Orientation, Param, PixelFilter, Projection, RenderDefaults, Scene, Texture,
+    Transform, WrapMode,
 };
 use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
 use sha2::{Digest, Sha256};
@@ -187,6 +187,7 @@ impl Feed for Camera {
             fov_deg,
             width,
             height,
+            projection,
         } = self;
         position.feed(h);
         look_at.feed(h);
@@ -194,6 +195,25 @@ impl Feed for Camera {
         fov_deg.feed(h);
         width.feed(h);
         height.feed(h);
+        match *projection {
+            Projection::Pinhole => tag(h, 0),
+            Projection::ThinLens {
+                aperture_radius,
+                focus_distance,
+            } => {
+                tag(h, 1);
+                aperture_radius.feed(h);
+                focus_distance.feed(h);
+            }
+            Projection::Orthographic {
+                half_width,
+                half_height,
+            } => {
+                tag(h, 2);
+                half_width.feed(h);
+                half_height.feed(h);
+            }
+        }
     }
 }
 

@@ -2,8 +2,8 @@
 //! never mix outputs of different scenes), and only then.
 use eyeadapt_scene::{
     Bitmap, Bsdf, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light,
-    Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, RenderDefaults, Rgb,
-    Scene, Texture, TextureId, Transform, WrapMode,
+    Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, Projection,
+    RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
 };
 use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
@@ -25,6 +25,7 @@ fn full() -> Scene {
             fov_deg: 40.0,
             width: 32,
             height: 24,
+            projection: eyeadapt_scene::Projection::Pinhole,
         }),
         materials: vec![
             Material {
@@ -172,6 +173,18 @@ fn changes() -> Vec<(&'static str, Change)> {
         ("camera.look_at", |s| cam(s).look_at.y += 0.5),
         ("camera.up", |s| cam(s).up = Vec3::X),
         ("camera.fov_deg", |s| cam(s).fov_deg = 41.0),
+        ("camera.projection thin lens", |s| {
+            cam(s).projection = Projection::ThinLens {
+                aperture_radius: 0.1,
+                focus_distance: 2.0,
+            }
+        }),
+        ("camera.projection orthographic", |s| {
+            cam(s).projection = Projection::Orthographic {
+                half_width: 1.0,
+                half_height: 0.75,
+            }
+        }),
         ("camera.width", |s| cam(s).width = 33),
         ("camera.height", |s| cam(s).height = 25),
         ("material.name", |s| s.materials[0].name = "e".into()),

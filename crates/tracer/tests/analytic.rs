@@ -15,6 +15,7 @@ fn camera(position: Vec3, look_at: Vec3, w: u32, h: u32) -> Camera {
         fov_deg: 60.0,
         width: w,
         height: h,
+        projection: eyeadapt_scene::Projection::Pinhole,
     }
 }
 
@@ -212,6 +213,7 @@ fn eye_view(forward: Vec3) -> View {
         fov_deg: 50.0,
         width: 64,
         height: 48,
+        projection: eyeadapt_scene::Projection::Pinhole,
     }
 }
 

@@ -137,6 +137,7 @@ fn a_constant_envmap_is_a_white_furnace() {
         fov_deg: 40.0,
         width: 12,
         height: 8,
+        projection: eyeadapt_scene::Projection::Pinhole,
     };
     let mut sum = DVec3::ZERO;
     let mut worst = 0.0f64;
@@ -217,6 +218,7 @@ fn courtyard() -> (Scene, View, Vec3, Vec3) {
         fov_deg: 50.0,
         width: 64,
         height: 48,
+        projection: eyeadapt_scene::Projection::Pinhole,
     };
     (scene, view, sun_dir, sun_e)
 }
@@ -242,6 +244,7 @@ fn cube_map_estimate(data: &SceneData, view: &View, n: u32, spp: u32, depth: i32
             fov_deg: 90.0,
             width: n,
             height: n,
+            projection: eyeadapt_scene::Projection::Pinhole,
         };
         let img = render(data, &face, &settings(spp, 100 + k as u64, depth));
         let (r, u, f) = face.basis();
