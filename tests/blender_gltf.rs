@@ -6,7 +6,9 @@
 //! 2. A walkthrough job whose scene is Blender's `.glb` and that has no camera path follows the
 //!    file's animated camera at 24 fps: one frame per Blender frame, and the CSV's
 //!    `cam_x/y/z` are Blender's evaluated camera positions in glTF's Y-up axes.
-//! 3. A scene lit by a Blender point light renders as Cycles renders it:
+//! 3. A scene lit by a Blender point light renders as Cycles renders it, and a base colour
+//!    texture lands where Cycles puts it (`scripts/blender/textured.py`: a floor of sixteen
+//!    colours, compared in 6 × 3 image blocks within 10 %):
 //!
 //! `scripts/blender/point_lit.py` builds a closed grey room lit by one 100 W Blender point
 //! light, exports it to `.glb` and renders it with Cycles (no clamping, no light threshold,
@@ -45,7 +47,8 @@ fn blender_python() -> Result<PathBuf, String> {
     }
 }
 
-fn mean_rgb(path: &Path) -> [f64; 3] {
+/// The RGB pixels of an EXR (row-major from the top) and its width.
+fn read_rgb(path: &Path) -> (usize, Vec<[f32; 3]>) {
     use exr::prelude::*;
     let img = read_first_rgba_layer_from_file(
         path,
@@ -53,14 +56,73 @@ fn mean_rgb(path: &Path) -> [f64; 3] {
         |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
     )
     .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let px = &img.layer_data.channel_data.pixels.1;
+    img.layer_data.channel_data.pixels
+}
+
+/// Mean RGB of the pixels in columns x0..x1 and rows y0..y1.
+fn block_mean(img: &(usize, Vec<[f32; 3]>), x: (usize, usize), y: (usize, usize)) -> [f64; 3] {
+    let (w, px) = img;
     let mut sum = [0f64; 3];
-    for p in px {
-        for c in 0..3 {
-            sum[c] += f64::from(p[c]);
+    for row in y.0..y.1 {
+        for p in &px[row * w + x.0..row * w + x.1] {
+            for c in 0..3 {
+                sum[c] += f64::from(p[c]);
+            }
         }
     }
-    sum.map(|s| s / px.len() as f64)
+    let n = ((x.1 - x.0) * (y.1 - y.0)) as f64;
+    sum.map(|s| s / n)
+}
+
+fn mean_rgb(path: &Path) -> [f64; 3] {
+    let img = read_rgb(path);
+    let h = img.1.len() / img.0;
+    block_mean(&img, (0, img.0), (0, h))
+}
+
+/// Runs a `scripts/blender/` scene builder into `dir` (it renders `cycles.exr` there) and
+/// renders its `.glb` with eyeadapt at the same size, spp and depth into `dir/ea`.
+fn blender_and_eyeadapt(
+    python: &Path,
+    dir: &Path,
+    script: &str,
+    glb: &str,
+    size: (u32, u32),
+    spp: u32,
+) {
+    let bounces = 14;
+    let made = Command::new(python)
+        .arg(format!("scripts/blender/{script}"))
+        .arg(dir)
+        .args(["--size", &size.0.to_string(), &size.1.to_string()])
+        .args(["--spp", &spp.to_string(), "--bounces", &bounces.to_string()])
+        .output()
+        .expect("run Blender");
+    assert!(
+        made.status.success(),
+        "{script} failed: {}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    let ran = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .arg("render")
+        .arg(dir.join(glb))
+        .args([
+            "--width",
+            &size.0.to_string(),
+            "--height",
+            &size.1.to_string(),
+        ])
+        .args(["--spp", &spp.to_string()])
+        .args(["--max-depth", &(bounces + 2).to_string()])
+        .arg("--out")
+        .arg(dir.join("ea"))
+        .output()
+        .unwrap();
+    assert!(
+        ran.status.success(),
+        "eyeadapt render failed: {}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
 }
 
 #[test]
@@ -69,35 +131,15 @@ fn a_blender_point_light_renders_as_in_cycles() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let (w, h, spp, bounces) = (64, 36, 256, 14);
-    let made = Command::new(&python)
-        .arg("scripts/blender/point_lit.py")
-        .arg(dir.path())
-        .args(["--size", &w.to_string(), &h.to_string()])
-        .args(["--spp", &spp.to_string(), "--bounces", &bounces.to_string()])
-        .output()
-        .expect("run Blender");
-    assert!(
-        made.status.success(),
-        "point_lit.py failed: {}",
-        String::from_utf8_lossy(&made.stderr)
+    blender_and_eyeadapt(
+        &python,
+        dir.path(),
+        "point_lit.py",
+        "point_lit.glb",
+        (64, 36),
+        256,
     );
     let out = dir.path().join("ea");
-    let ran = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
-        .arg("render")
-        .arg(dir.path().join("point_lit.glb"))
-        .args(["--width", &w.to_string(), "--height", &h.to_string()])
-        .args(["--spp", &spp.to_string()])
-        .args(["--max-depth", &(bounces + 2).to_string()])
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        ran.status.success(),
-        "eyeadapt render failed: {}",
-        String::from_utf8_lossy(&ran.stderr)
-    );
     let cycles = mean_rgb(&dir.path().join("cycles.exr"));
     let ours = mean_rgb(&out.join("raw.exr"));
     let ratio: Vec<f64> = (0..3).map(|c| ours[c] / cycles[c]).collect();
@@ -108,6 +150,49 @@ fn a_blender_point_light_renders_as_in_cycles() {
             "channel {c}: eyeadapt/Cycles = {r}"
         );
     }
+}
+
+#[test]
+fn a_blender_texture_lands_where_cycles_puts_it() {
+    let Some(python) = blender_or_skip() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let (w, h) = (96, 54);
+    blender_and_eyeadapt(
+        &python,
+        dir.path(),
+        "textured.py",
+        "textured.glb",
+        (w, h),
+        128,
+    );
+    let cycles = read_rgb(&dir.path().join("cycles.exr"));
+    let ours = read_rgb(&dir.path().join("ea").join("raw.exr"));
+    // 6 × 3 blocks over a floor of sixteen colours: a flipped, mirrored or transposed UV, or
+    // sRGB bytes read as linear, moves colour between blocks by far more than 10 %.
+    let (bx, by) = (6, 3);
+    let mut worst: f64 = 0.0;
+    for j in 0..by {
+        for i in 0..bx {
+            let (w, h) = (w as usize, h as usize);
+            let x = (i * w / bx, (i + 1) * w / bx);
+            let y = (j * h / by, (j + 1) * h / by);
+            let (a, b) = (block_mean(&cycles, x, y), block_mean(&ours, x, y));
+            for c in 0..3 {
+                // Relative, with a floor so that a nearly black channel is not judged by noise.
+                let d = (b[c] - a[c]).abs() / a[c].max(0.05);
+                worst = worst.max(d);
+                assert!(
+                    d <= 0.10,
+                    "block ({i}, {j}) channel {c}: eyeadapt {} vs Cycles {}",
+                    b[c],
+                    a[c]
+                );
+            }
+        }
+    }
+    eprintln!("{bx}x{by} blocks: largest |eyeadapt - Cycles| / Cycles {worst:.4}");
 }
 
 #[test]

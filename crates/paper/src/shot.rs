@@ -7,8 +7,10 @@ use eyeadapt_color::Estimate;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::output::atomic_write_bytes;
-use eyeadapt_sequencer::pipeline::{FrameResult, Layout, Outputs, WriteSpec, write_images};
-use eyeadapt_tracer::{Frame, SceneData, View};
+use eyeadapt_sequencer::pipeline::{
+    FrameResult, FrameScenes, Layout, Outputs, WriteSpec, write_images,
+};
+use eyeadapt_tracer::{Frame, View};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -81,13 +83,14 @@ pub(crate) fn run_job(
 ) -> Result<JobRun, Failure> {
     let name = case.jobs[index].0;
     let job = load_case_job(case, index, o, dir)?;
-    let data = SceneData::new(&job.scene);
-    let pipeline = job.pipeline(&data);
+    let scenes = FrameScenes::new(&job.scene);
     let mut csv = String::from(eyeadapt_sequencer::adapt::CSV_HEADER);
     csv.push('\n');
     let mut shots = Vec::new();
     for &f in job.frames.as_slice() {
-        let r = pipeline.run(f, job.time(f), job.view(f));
+        let r = scenes.at(job.time(f), |data| {
+            job.pipeline(data).run(f, job.time(f), job.view(f))
+        });
         let (extra, diag) = cases::diagnostics(case, &job, &r.view, &r.image);
         csv.push_str(&r.rows());
         for d in &extra {

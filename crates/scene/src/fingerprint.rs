@@ -6,12 +6,14 @@
 //! preceded by a tag naming its variant and each sequence by its length, so no two different
 //! scenes feed the same bytes. Floats feed their bits: −0.0 and 0.0 differ, which can only
 //! make a resume refuse, never mix scenes.
+use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
     Bitmap, Bsdf, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light,
     Material, Mesh, Orientation, Param, PixelFilter, Projection, RenderDefaults, Scene, Texture,
     Transform, WrapMode,
 };
-use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
+use crate::{Interpolation, Track};
+use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
 use sha2::{Digest, Sha256};
 
 /// Something that contributes to a fingerprint.
@@ -164,6 +166,7 @@ impl Feed for Scene {
             render,
             camera_path,
             warnings: _,
+            animation,
         } = self;
         camera.feed(h);
         materials.feed(h);
@@ -175,6 +178,102 @@ impl Feed for Scene {
         environment_map.feed(h);
         render.feed(h);
         camera_path.feed(h);
+        animation.as_deref().feed(h);
+    }
+}
+
+impl Feed for SceneAnimation {
+    fn feed(&self, h: &mut Sha256) {
+        let SceneAnimation {
+            tree,
+            instances,
+            lights,
+        } = self;
+        tree.nodes.feed(h);
+        (instances.len() as u64).feed(h);
+        for &(i, node) in instances {
+            i.feed(h);
+            (node as u64).feed(h);
+        }
+        (lights.len() as u64).feed(h);
+        for (i, node, light) in lights {
+            i.feed(h);
+            (*node as u64).feed(h);
+            light.feed(h);
+        }
+    }
+}
+
+impl Feed for Node {
+    fn feed(&self, h: &mut Sha256) {
+        // The name and index only label the node; the parent, rest pose and tracks place it.
+        let Node {
+            index: _,
+            name: _,
+            parent,
+            rest,
+            tracks,
+        } = self;
+        parent.map(|p| p as u64).feed(h);
+        match rest {
+            Rest::Matrix(m) => {
+                tag(h, 0);
+                m.to_cols_array().feed(h);
+            }
+            Rest::Trs {
+                translation,
+                rotation,
+                scale,
+            } => {
+                tag(h, 1);
+                translation.feed(h);
+                rotation.to_array().feed(h);
+                scale.feed(h);
+            }
+        }
+        let NodeTracks {
+            translation,
+            rotation,
+            scale,
+        } = tracks;
+        translation.feed(h);
+        rotation.feed(h);
+        scale.feed(h);
+    }
+}
+
+impl<T: Copy> Feed for Track<T>
+where
+    [T]: Feed,
+{
+    fn feed(&self, h: &mut Sha256) {
+        let Track {
+            times,
+            values,
+            interpolation,
+        } = self;
+        times.feed(h);
+        values.as_slice().feed(h);
+        tag(
+            h,
+            match interpolation {
+                Interpolation::Step => 0,
+                Interpolation::Linear => 1,
+                Interpolation::CubicSpline => 2,
+            },
+        );
+    }
+}
+
+impl Feed for DQuat {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_array().feed(h);
+    }
+}
+
+impl<T: Feed + ?Sized> Feed for &T {
+    fn feed(&self, h: &mut Sha256) {
+        (**self).feed(h);
     }
 }
 

@@ -1,9 +1,11 @@
 //! The loaded scene: plain data for the tracer, whatever front-end (TOML, Mitsuba XML) read it.
+use crate::gltf::SceneAnimation;
 use crate::{
     Camera, CameraPath, Diagnostic, EnvironmentMap, Instance, Light, Material, MaterialId, Mesh,
     MeshId, Rgb, Texture, TextureId, Transform,
 };
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Render settings a scene file may suggest; command-line flags and job files override them.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -39,6 +41,8 @@ pub struct Scene {
     pub camera_path: Option<CameraPath>,
     /// Warnings met while loading (missing MTL, unknown material, …), already formatted.
     pub warnings: Vec<Diagnostic>,
+    /// Instances and lights that move over time (glTF node animation); `None`: all still.
+    pub animation: Option<Arc<SceneAnimation>>,
 }
 
 impl Scene {
@@ -56,6 +60,21 @@ impl Scene {
 
     pub fn texture(&self, id: TextureId) -> &Texture {
         &self.textures[id.0 as usize]
+    }
+
+    /// True when the scene has objects or lights that move over time.
+    pub fn is_animated(&self) -> bool {
+        self.animation.as_ref().is_some_and(|a| !a.is_empty())
+    }
+
+    /// The scene as it is at time `t` (seconds on its animation's clock): a copy with every
+    /// animated instance and light placed for `t`.
+    pub fn at_time(&self, t: f64) -> Scene {
+        let mut s = self.clone();
+        if let Some(a) = &self.animation {
+            a.apply(&mut s, t);
+        }
+        s
     }
 
     /// Triangles as rendered: every instance counts its mesh's triangles.

@@ -1,11 +1,13 @@
 //! The scene fingerprint changes when any single field of any type changes (a resumed run must
 //! never mix outputs of different scenes), and only then.
+use eyeadapt_scene::gltf::{Node, NodeTracks, NodeTree, Rest, SceneAnimation};
 use eyeadapt_scene::{
     Bitmap, Bsdf, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light,
     Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, Projection,
     RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
 };
-use glam::{Affine2, DVec3, Mat4, Vec2, Vec3};
+use eyeadapt_scene::{Interpolation, Track};
+use glam::{Affine2, DMat4, DQuat, DVec3, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -145,6 +147,51 @@ fn full() -> Scene {
             ],
         }),
         warnings: Vec::new(),
+        animation: Some(Arc::new(animation())),
+    }
+}
+
+/// Two nodes, the child animated, placing instance 0 and light 0.
+fn animation() -> SceneAnimation {
+    let still = Node {
+        index: 0,
+        name: Some("root".into()),
+        parent: None,
+        rest: Rest::Matrix(DMat4::IDENTITY),
+        tracks: NodeTracks::default(),
+    };
+    let moving = Node {
+        index: 1,
+        name: None,
+        parent: Some(0),
+        rest: Rest::Trs {
+            translation: DVec3::X,
+            rotation: DQuat::IDENTITY,
+            scale: DVec3::ONE,
+        },
+        tracks: NodeTracks {
+            translation: Some(Track {
+                times: vec![0.0, 1.0],
+                values: vec![DVec3::ZERO, DVec3::Y],
+                interpolation: Interpolation::Linear,
+            }),
+            rotation: None,
+            scale: None,
+        },
+    };
+    SceneAnimation {
+        tree: NodeTree {
+            nodes: vec![still, moving],
+        },
+        instances: vec![(0, 1)],
+        lights: vec![(
+            0,
+            1,
+            Light::Point {
+                position: Vec3::ZERO,
+                intensity: Rgb::ONE,
+            },
+        )],
     }
 }
 
@@ -163,6 +210,9 @@ fn changes() -> Vec<(&'static str, Change)> {
             Texture::Bitmap(b) => b,
             _ => unreachable!(),
         }
+    }
+    fn anim(s: &mut Scene) -> &mut SceneAnimation {
+        Arc::make_mut(s.animation.as_mut().unwrap())
     }
     fn key(s: &mut Scene, i: usize) -> &mut Keyframe {
         &mut s.camera_path.as_mut().unwrap().keyframes[i]
@@ -403,6 +453,37 @@ fn changes() -> Vec<(&'static str, Change)> {
             }
         }),
         ("keyframe.fov_deg", |s| key(s, 0).fov_deg = Some(40.0)),
+        ("animation", |s| s.animation = None),
+        ("animation.parent", |s| anim(s).tree.nodes[1].parent = None),
+        ("animation.rest", |s| {
+            anim(s).tree.nodes[0].rest = Rest::Matrix(DMat4::from_scale(DVec3::splat(2.0)))
+        }),
+        ("animation.track.times", |s| {
+            anim(s).tree.nodes[1]
+                .tracks
+                .translation
+                .as_mut()
+                .unwrap()
+                .times[1] = 2.0
+        }),
+        ("animation.track.values", |s| {
+            anim(s).tree.nodes[1]
+                .tracks
+                .translation
+                .as_mut()
+                .unwrap()
+                .values[1] = DVec3::Z
+        }),
+        ("animation.track.interpolation", |s| {
+            anim(s).tree.nodes[1]
+                .tracks
+                .translation
+                .as_mut()
+                .unwrap()
+                .interpolation = Interpolation::Step
+        }),
+        ("animation.instances", |s| anim(s).instances[0].1 = 0),
+        ("animation.lights", |s| anim(s).lights[0].1 = 0),
     ]
 }
 

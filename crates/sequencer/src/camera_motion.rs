@@ -138,3 +138,11 @@ fn follow(
         fps,
     })
 }
+
+/// A glTF scene's moving objects follow the animation its camera follows: the job's
+/// `[camera_path] animation` picks one for both (by default every animation plays).
+pub fn play_with_camera(scene: &mut Scene, motion: &CameraMotion) {
+    if let (CameraMotion::Gltf { camera, .. }, Some(a)) = (motion, scene.animation.as_mut()) {
+        std::sync::Arc::make_mut(a).tree = camera.tree.clone();
+    }
+}

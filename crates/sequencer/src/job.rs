@@ -266,9 +266,10 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
             }
         }
     });
-    let (Some(scene), Some(path)) = (scene, path) else {
+    let (Some(mut scene), Some(path)) = (scene, path) else {
         return Err(Failure::Input(p.errors.join("\n")));
     };
+    crate::camera_motion::play_with_camera(&mut scene, &path);
     let camera = scene.camera.clone();
     let width = sampling
         .width

@@ -80,6 +80,31 @@ impl Default for Outputs {
     }
 }
 
+/// The render data of each frame's scene: built once when nothing in the scene moves, built
+/// for each frame's time when instances or lights are animated (each frame from its time
+/// alone, so chunks and resumed runs get the same bits).
+pub struct FrameScenes<'a> {
+    scene: &'a Scene,
+    still: Option<SceneData>,
+}
+
+impl<'a> FrameScenes<'a> {
+    pub fn new(scene: &'a Scene) -> FrameScenes<'a> {
+        FrameScenes {
+            scene,
+            still: (!scene.is_animated()).then(|| SceneData::new(scene)),
+        }
+    }
+
+    /// Runs `f` on the render data of the scene at time `t`.
+    pub fn at<R>(&self, t: f64, f: impl FnOnce(&SceneData) -> R) -> R {
+        match &self.still {
+            Some(data) => f(data),
+            None => f(&SceneData::new(&self.scene.at_time(t))),
+        }
+    }
+}
+
 /// What every frame of a run shares.
 pub struct Pipeline<'a> {
     pub data: &'a SceneData,

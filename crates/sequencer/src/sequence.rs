@@ -16,7 +16,7 @@ use crate::frames::FrameSet;
 use crate::job::Job;
 use crate::manifest::{CSV, FileEntry, FrameEntry, Manifest, file_entry};
 use crate::output::atomic_write_bytes;
-use crate::pipeline::{FrameResult, Layout, WriteSpec, frame_name, write_images};
+use crate::pipeline::{FrameResult, FrameScenes, Layout, WriteSpec, frame_name, write_images};
 use crate::progress::{LogFormat, Progress};
 use crate::settings::RunSettings;
 use eyeadapt_tracer::SceneData;
@@ -217,11 +217,13 @@ pub fn run_sequence(job: &Job, o: &SequenceOptions) -> Result<SequenceSummary, F
         ));
     }
     if !todo.is_empty() {
-        let data = SceneData::new(&job.scene);
+        let scenes = FrameScenes::new(&job.scene);
         for (i, &f) in todo.iter().enumerate() {
             progress.frame_started(f, i);
             let t = Instant::now();
-            let (entry, r) = render_frame(job, &data, f, &o.out, &progress)?;
+            let (entry, r) = scenes.at(job.time(f), |data| {
+                render_frame(job, data, f, &o.out, &progress)
+            })?;
             let (readings, frame) = (&r.readings, &r.image);
             commit(&o.out, &mut m, f, entry)?;
             summary.rendered += 1;

@@ -4,8 +4,11 @@
 //! them) and each node that uses one an instance with its world transform; materials are read
 //! once each; `KHR_lights_punctual` lights are placed by their nodes; the chosen camera at
 //! time 0 is the scene camera.
+use super::animated::SceneAnimation;
 use super::camera::AnimatedCamera;
+use super::nodes::NodeTree;
 use super::read::{GltfFile, at, fail};
+use super::textures::Textures;
 use super::{geometry, lights, materials};
 use crate::{Camera, Diagnostic, MaterialId, MeshId, Scene, SceneError, Severity, Transform};
 use glam::DMat4;
@@ -16,7 +19,11 @@ use std::collections::HashMap;
 const DEFAULT_WIDTH: u32 = 640;
 
 /// The scene of `file`, seen from `camera` at time 0.
-pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, SceneError> {
+pub fn scene(
+    file: &GltfFile,
+    tree: &NodeTree,
+    camera: Option<&AnimatedCamera>,
+) -> Result<Scene, SceneError> {
     let mut s = Scene {
         source: file.path.clone(),
         ..Scene::default()
@@ -25,6 +32,12 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
     let mut warnings: Vec<Diagnostic> = Vec::new();
     let mut meshes: HashMap<(usize, usize), Option<MeshId>> = HashMap::new();
     let mut mats: HashMap<Option<usize>, MaterialId> = HashMap::new();
+    let mut textures = Textures::new(file);
+    let mut moving = SceneAnimation {
+        tree: tree.clone(),
+        instances: Vec::new(),
+        lights: Vec::new(),
+    };
     let roots: Vec<gltf::Node> = match file
         .document
         .default_scene()
@@ -47,9 +60,17 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
         for c in node.children() {
             stack.push((c, world));
         }
+        let animated = tree.is_animated(node.index());
         if let Some(light) = node.light()
             && let Some(l) = lights::light(&file.path, &light, world, &mut warnings)
         {
+            if animated {
+                let local = lights::light(&file.path, &light, DMat4::IDENTITY, &mut Vec::new());
+                let index = s.lights.len() as u32;
+                moving
+                    .lights
+                    .extend(local.map(|l| (index, node.index(), l)));
+            }
             s.lights.push(l);
         }
         let Some(mesh) = node.mesh() else { continue };
@@ -72,11 +93,25 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
             };
             let Some(id) = id else { continue };
             let gm = prim.material();
-            let mat = *mats.entry(gm.index()).or_insert_with(|| {
-                let m = materials::material(&file.path, &gm, &mut warnings);
-                s.materials.push(m);
-                MaterialId(s.materials.len() as u32 - 1)
-            });
+            let mat = match mats.get(&gm.index()) {
+                Some(id) => *id,
+                None => {
+                    let m = materials::material(file, &gm, &mut textures, &mut s, &mut warnings)
+                        .unwrap_or_else(|e| {
+                            errors.push(e);
+                            crate::Material::error()
+                        });
+                    s.materials.push(m);
+                    let id = MaterialId(s.materials.len() as u32 - 1);
+                    mats.insert(gm.index(), id);
+                    id
+                }
+            };
+            if animated {
+                moving
+                    .instances
+                    .push((s.instances.len() as u32, node.index()));
+            }
             s.add_instance(
                 id,
                 Some(mat),
@@ -100,6 +135,9 @@ pub fn scene(file: &GltfFile, camera: Option<&AnimatedCamera>) -> Result<Scene, 
         return Err(SceneError {
             diagnostics: errors,
         });
+    }
+    if !moving.is_empty() {
+        s.animation = Some(std::sync::Arc::new(moving));
     }
     warnings
         .iter_mut()

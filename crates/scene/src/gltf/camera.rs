@@ -19,7 +19,8 @@ pub struct AnimatedCamera {
     pub fov_deg: f64,
     /// The chosen animation's name (or `animations/N`), `None` for a still camera.
     pub animation: Option<String>,
-    /// Seconds covered by the animation of the camera and its parents (`(0, 0)` if still).
+    /// Seconds covered by the animation that plays, over every node it moves (`(0, 0)` when
+    /// nothing moves).
     pub range: (f64, f64),
     /// Every node of the file with the chosen animation's tracks.
     pub tree: NodeTree,

@@ -3,9 +3,8 @@
 //! Each primitive of a glTF mesh becomes one eyeadapt mesh (a primitive has one material);
 //! nodes that use the mesh become instances of it, so a mesh placed a thousand times is stored
 //! once. Triangle lists, strips and fans are read; points and lines have no area and are
-//! skipped with a warning. UVs change convention: glTF's (0, 0) is the top-left corner of an
-//! image with v growing downwards, eyeadapt's (Mitsuba's) is the bottom-left with v upwards,
-//! so `v ↦ 1 − v`.
+//! skipped with a warning. UVs are kept as they are: glTF's (0, 0) is the top-left corner of
+//! an image with v growing downwards, which is eyeadapt's (and Mitsuba's) convention too.
 use super::read::{GltfFile, at};
 use crate::{Diagnostic, Mesh, Rgb, Severity};
 use glam::{Vec2, Vec3};
@@ -95,7 +94,7 @@ pub fn primitive_mesh(
         same_count("NORMAL", normals.len())?;
     }
     let uvs: Vec<Vec2> = match reader.read_tex_coords(0) {
-        Some(it) => it.into_f32().map(|[u, v]| Vec2::new(u, 1.0 - v)).collect(),
+        Some(it) => it.into_f32().map(Vec2::from_array).collect(),
         None => Vec::new(),
     };
     if !uvs.is_empty() {

@@ -6,6 +6,7 @@
 //! - [`camera`]: the camera a walkthrough is rendered from, as a pose per time;
 //! - [`geometry`], [`materials`], [`lights`]: meshes, metallic-roughness materials and
 //!   `KHR_lights_punctual` lights in eyeadapt's terms; [`assemble`]: the whole [`Scene`].
+mod animated;
 mod assemble;
 mod camera;
 mod geometry;
@@ -14,7 +15,9 @@ mod load_nodes;
 mod materials;
 mod nodes;
 mod read;
+mod textures;
 
+pub use animated::SceneAnimation;
 pub use camera::AnimatedCamera;
 pub use lights::LUMENS_PER_WATT;
 pub use load_nodes::MAX_ANIMATION_SECONDS;
@@ -31,19 +34,21 @@ pub fn is_gltf_path(path: &Path) -> bool {
 }
 
 /// The scene of a glTF file seen from its first animated camera (or first camera) at time 0:
-/// what `eyeadapt render` shows. Sequences follow the camera with [`load_camera`].
+/// what `eyeadapt render` shows. Sequences follow the camera with [`load_camera`]; instances
+/// and lights on animated nodes are listed in [`Scene::animation`] (every animation playing).
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
     let file = open(path)?;
     // The hierarchy and every animation are checked whether or not a camera uses them: a
     // cycle or a broken track is an error in the file, not only in a walkthrough of it.
-    load_nodes::node_tree(&file, None).map_err(|diagnostics| SceneError { diagnostics })?;
+    let tree =
+        load_nodes::node_tree(&file, None).map_err(|diagnostics| SceneError { diagnostics })?;
     let has_camera = file.document.nodes().any(|n| n.camera().is_some());
     let camera = if has_camera {
         Some(camera_of(&file, None, None)?)
     } else {
         None
     };
-    assemble::scene(&file, camera.as_ref())
+    assemble::scene(&file, &tree, camera.as_ref())
 }
 
 /// The camera of a glTF file and the animation that moves it.
@@ -118,7 +123,9 @@ pub fn camera_of(
             format!("yfov of {fov_deg}° is not in (0°, 180°)"),
         )));
     }
-    let range = tree.animation_range(node.index());
+    // The walkthrough lasts as long as anything in the animation moves (a camera that stops
+    // while a door still opens holds its last pose), as Blender's frame range does.
+    let range = tree.range();
     let animation = match (range, animation) {
         (None, _) => None,
         (Some(_), Some(name)) => Some(name.to_string()),

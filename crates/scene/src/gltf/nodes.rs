@@ -108,6 +108,14 @@ impl NodeTree {
             .reduce(|(a0, a1), (b0, b1)| (a0.min(b0), a1.max(b1)))
     }
 
+    /// First and last keyframe time over every node's tracks, if anything is animated.
+    pub fn range(&self) -> Option<(f64, f64)> {
+        self.nodes
+            .iter()
+            .filter_map(|n| n.tracks.range())
+            .reduce(|(a0, a1), (b0, b1)| (a0.min(b0), a1.max(b1)))
+    }
+
     /// The node, its parent, its grandparent … up to the root.
     fn chain(&self, node: usize) -> impl Iterator<Item = usize> + '_ {
         std::iter::successors(Some(node), |&n| self.nodes[n].parent)
