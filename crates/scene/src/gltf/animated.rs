@@ -72,5 +72,12 @@ pub fn placed(local: &Light, to_world: DMat4) -> Light {
             cone_deg: *cone_deg,
             falloff_deg: *falloff_deg,
         },
+        Light::Directional {
+            direction,
+            irradiance,
+        } => Light::Directional {
+            direction: dir(*direction),
+            irradiance: *irradiance,
+        },
     }
 }
