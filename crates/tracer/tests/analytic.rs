@@ -1,9 +1,10 @@
 //! Renders with known answers: white furnace, closed emitting sphere, determinism across
 //! thread counts, and the eye sensor's closed forms (estimators.md §1).
+mod common;
+
+use common::settings;
 use eyeadapt_scene::{Camera, Light, Material, Mesh, Scene, sphere_mesh};
-use eyeadapt_tracer::{
-    EyeSettings, Frame, PathSettings, RenderSettings, SceneData, View, eye_sensor, render,
-};
+use eyeadapt_tracer::{EyeSettings, Frame, PathSettings, SceneData, View, eye_sensor, render};
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
 
@@ -16,19 +17,6 @@ fn camera(position: Vec3, look_at: Vec3, w: u32, h: u32) -> Camera {
         width: w,
         height: h,
         projection: eyeadapt_scene::Projection::Pinhole,
-    }
-}
-
-fn settings(spp: u32, seed: u64, max_depth: i32) -> RenderSettings {
-    RenderSettings {
-        spp,
-        path: PathSettings {
-            max_depth,
-            rr_depth: 5,
-        },
-        seed,
-        frame: 0,
-        filter: eyeadapt_scene::PixelFilter::Box,
     }
 }
 

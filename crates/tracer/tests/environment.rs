@@ -1,12 +1,15 @@
 //! Environment maps and the sun: the map's sampling density against its own pdf (∫ = 1, a χ²
 //! test of sampled directions), a constant map's furnace, and the eye sensor against an
 //! independent estimate (a cube map rendered from the eye, integrated with the cardioid).
+mod common;
+
+use common::settings;
 use eyeadapt_scene::{
     EnvironmentMap, Image, Light, Material, Scene, box_mesh, quad_mesh, sphere_mesh,
 };
 use eyeadapt_tracer::{
-    Environment, EyeSettings, PathSettings, RenderSettings, SampleStream, SceneData, View,
-    eye_sensor, hash_key, luminance, render,
+    Environment, EyeSettings, PathSettings, SampleStream, SceneData, View, eye_sensor, hash_key,
+    luminance, render,
 };
 use glam::{DVec3, Mat3, Vec3, Vec3A};
 use std::f64::consts::PI;
@@ -157,19 +160,6 @@ fn a_constant_envmap_is_a_white_furnace() {
     );
     // Every pixel of every render near L (a white sphere in a uniform sky is invisible).
     assert!(worst < 0.25, "worst pixel off by {worst}");
-}
-
-fn settings(spp: u32, seed: u64, max_depth: i32) -> RenderSettings {
-    RenderSettings {
-        spp,
-        path: PathSettings {
-            max_depth,
-            rr_depth: 5,
-        },
-        seed,
-        frame: 0,
-        filter: eyeadapt_scene::PixelFilter::Box,
-    }
 }
 
 /// Linear sRGB (D65) to CIE xy.
