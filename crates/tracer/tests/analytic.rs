@@ -67,13 +67,12 @@ fn assert_converges(px: &[([f64; 3], [f64; 3])], expected: [f64; 3]) {
         worst.0,
         px[worst.1]
     );
-    for c in 0..3 {
+    for (c, e) in expected.iter().enumerate() {
         let m = px.iter().map(|p| p.0[c]).sum::<f64>() / px.len() as f64;
         let se = (px.iter().map(|p| p.1[c] * p.1[c]).sum::<f64>()).sqrt() / px.len() as f64;
         assert!(
-            (m - expected[c]).abs() < 3.0 * se.max(1e-9),
-            "image mean {m} vs {} (se {se})",
-            expected[c]
+            (m - e).abs() < 3.0 * se.max(1e-9),
+            "image mean {m} vs {e} (se {se})"
         );
     }
 }
