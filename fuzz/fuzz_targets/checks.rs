@@ -73,12 +73,21 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             Light::Directional {
                 direction,
                 irradiance,
-            } => direction.is_finite() && check_colour(*irradiance).is_ok(),
+            } => (direction.length() - 1.0).abs() < 1e-4 && check_colour(*irradiance).is_ok(),
         };
         assert!(ok, "bad light accepted: {l:?}");
     }
     if let Some(e) = scene.environment {
         assert!(check_colour(e).is_ok(), "bad environment accepted: {e:?}");
+    }
+    if let Some(m) = &scene.environment_map {
+        assert!(
+            eyeadapt_scene::check_lat_long(&m.image).is_ok()
+                && m.scale.is_finite()
+                && m.scale >= 0.0,
+            "bad environment map accepted: {}",
+            m.filename.display()
+        );
     }
     if scene.triangle_count() > max_triangles {
         return;
@@ -97,6 +106,7 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
             fov_deg: 60.0,
             width: 4,
             height: 3,
+            projection: eyeadapt_scene::Projection::Pinhole,
         },
     };
     let settings = RenderSettings {

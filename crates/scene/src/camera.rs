@@ -1,4 +1,5 @@
-//! Pinhole camera.
+//! The camera: a pinhole in TOML scenes; Mitsuba scenes may also give a thin lens or an
+//! orthographic view ([`Projection`]).
 //!
 //! ```toml
 //! [camera]
@@ -11,7 +12,25 @@
 //! ```
 use glam::Vec3;
 
-/// A pinhole camera looking from `position` towards `look_at`.
+/// How camera rays leave the camera.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Projection {
+    /// Every ray starts at the camera's position (field of view `fov_deg`).
+    #[default]
+    Pinhole,
+    /// Rays start on a disc of `aperture_radius` around the position, across the view, and
+    /// meet the pinhole's ray of their pixel at `focus_distance` along the view (Mitsuba's
+    /// `thinlens`); the field of view is the pinhole's.
+    ThinLens {
+        aperture_radius: f32,
+        focus_distance: f32,
+    },
+    /// Parallel rays along the view, from a rectangle of these half-extents (scene units)
+    /// centred on the position (Mitsuba's `orthographic`); `fov_deg` is not used for them.
+    Orthographic { half_width: f32, half_height: f32 },
+}
+
+/// A camera looking from `position` towards `look_at`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
     pub position: Vec3,
@@ -21,6 +40,7 @@ pub struct Camera {
     pub fov_deg: f32,
     pub width: u32,
     pub height: u32,
+    pub projection: Projection,
 }
 
 impl Camera {

@@ -45,7 +45,7 @@ mod transform;
 
 pub use crate::any::{is_mitsuba_path, load_scene_file};
 pub use crate::builtin::{builtin_scenes, load_builtin, resolve_scene};
-pub use crate::camera::Camera;
+pub use crate::camera::{Camera, Projection};
 pub use crate::camera_motion::{CameraMotion, DEFAULT_FPS, MAX_FPS, MAX_FRAMES};
 pub use crate::camera_path::{CameraPath, CameraPose, Keyframe, Orientation, PathProblem};
 pub use crate::camera_track::{CameraTrack, MAX_TRACK_ROWS};

@@ -4,7 +4,7 @@ use eyeadapt_scene::gltf::{Node, NodeTracks, NodeTree, Rest, SceneAnimation};
 use eyeadapt_scene::{
     Bitmap, Bsdf, Camera, CameraPath, Distribution, EnvironmentMap, FilterType, Image, Instance,
     Keyframe, Light, Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter,
-    RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
+    Projection, RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
 };
 use eyeadapt_scene::{Interpolation, Track};
 use glam::{Affine2, DMat4, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -27,6 +27,7 @@ fn full() -> Scene {
             fov_deg: 40.0,
             width: 32,
             height: 24,
+            projection: eyeadapt_scene::Projection::Pinhole,
         }),
         materials: vec![
             Material {
@@ -224,6 +225,18 @@ fn changes() -> Vec<(&'static str, Change)> {
         ("camera.look_at", |s| cam(s).look_at.y += 0.5),
         ("camera.up", |s| cam(s).up = Vec3::X),
         ("camera.fov_deg", |s| cam(s).fov_deg = 41.0),
+        ("camera.projection thin lens", |s| {
+            cam(s).projection = Projection::ThinLens {
+                aperture_radius: 0.1,
+                focus_distance: 2.0,
+            }
+        }),
+        ("camera.projection orthographic", |s| {
+            cam(s).projection = Projection::Orthographic {
+                half_width: 1.0,
+                half_height: 0.75,
+            }
+        }),
         ("camera.width", |s| cam(s).width = 33),
         ("camera.height", |s| cam(s).height = 25),
         ("material.name", |s| s.materials[0].name = "e".into()),

@@ -1,9 +1,9 @@
 //! Mitsuba 3 XML loading: the Cornell box against its TOML twin, parameters, transforms,
 //! field-of-view axes, the supported plugins, and located errors for unsupported scenes.
 use eyeadapt_scene::{
-    Bsdf, Distribution, FilterType, Light, Param, PixelFilter, RenderDefaults, Scene, SceneError,
-    Texture, TextureId, WrapMode, load_mitsuba, load_mitsuba_str, load_scene, load_scene_file,
-    mitsuba_vertical_fov,
+    Bsdf, Distribution, FilterType, Light, Param, PixelFilter, Projection, RenderDefaults, Scene,
+    SceneError, Texture, TextureId, WrapMode, load_mitsuba, load_mitsuba_str, load_scene,
+    load_scene_file, mitsuba_vertical_fov,
 };
 use glam::Vec3;
 use std::collections::BTreeMap;
@@ -993,4 +993,33 @@ fn direct_and_wrapped_integrators_render_with_the_path_tracer() {
         e.contains("unsupported <integrator type=\"volpath\">"),
         "{e}"
     );
+}
+
+#[test]
+fn thinlens_and_orthographic_sensors_load() {
+    let film = "<film type=\"hdrfilm\"><integer name=\"width\" value=\"40\"/><integer name=\"height\" value=\"20\"/></film>";
+    let s = load(&format!("<sensor type=\"thinlens\"><float name=\"fov\" value=\"30\"/><float name=\"aperture_radius\" value=\"0.2\"/><float name=\"focus_distance\" value=\"5.9\"/>{film}</sensor><emitter type=\"constant\"/>")).unwrap();
+    let c = s.camera.unwrap();
+    assert_eq!(
+        c.projection,
+        Projection::ThinLens {
+            aperture_radius: 0.2,
+            focus_distance: 5.9
+        }
+    );
+    let e = load("<sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0.2\"/></sensor><emitter type=\"constant\"/>").unwrap_err().to_string();
+    assert!(e.contains("focus_distance"), "{e}");
+    // The orthographic view is [−1, 1] across, [−1, 1] / aspect up, scaled by to_world.
+    let s = load(&format!("<sensor type=\"orthographic\"><transform name=\"to_world\"><scale x=\"2\" y=\"3\"/><lookat origin=\"0, 0, 5\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>{film}</sensor><emitter type=\"constant\"/>")).unwrap();
+    let c = s.camera.unwrap();
+    assert_eq!(
+        c.projection,
+        Projection::Orthographic {
+            half_width: 2.0,
+            half_height: 1.5
+        }
+    );
+    assert!((c.position - Vec3::new(0.0, 0.0, 5.0)).length() < 1e-6);
+    let e = load("<sensor type=\"orthographic\"><float name=\"fov\" value=\"30\"/></sensor><emitter type=\"constant\"/>").unwrap_err().to_string();
+    assert!(e.contains("fov"), "{e}");
 }

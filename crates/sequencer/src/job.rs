@@ -132,6 +132,11 @@ impl Job {
             }) as f32,
             width: self.width,
             height: self.height,
+            projection: self
+                .scene
+                .camera
+                .as_ref()
+                .map_or(eyeadapt_scene::Projection::Pinhole, |c| c.projection),
         }
     }
 

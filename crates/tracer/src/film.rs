@@ -12,7 +12,7 @@
 use crate::integrator::{Origin, PathSettings, trace};
 use crate::sampler::{SampleStream, hash_key};
 use crate::scene_data::SceneData;
-use eyeadapt_scene::PixelFilter;
+use eyeadapt_scene::{PixelFilter, Projection};
 use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -28,6 +28,8 @@ pub struct View {
     pub fov_deg: f32,
     pub width: u32,
     pub height: u32,
+    /// Pinhole, thin lens or orthographic (the eye sensor always sits at `position`).
+    pub projection: Projection,
 }
 
 impl View {
@@ -39,6 +41,7 @@ impl View {
             fov_deg: c.fov_deg,
             width: c.width,
             height: c.height,
+            projection: c.projection,
         }
     }
 
@@ -58,6 +61,47 @@ impl View {
         let sx = (2.0 * x / self.width as f32 - 1.0) * tan * aspect;
         let sy = (1.0 - 2.0 * y / self.height as f32) * tan;
         (f + r * sx + u * sy).normalize()
+    }
+
+    /// The camera ray through image position (x, y) (as [`View::ray_dir`]): origin and unit
+    /// direction; `lens` is a 2-D sample of the thin lens's aperture (unused otherwise).
+    #[inline]
+    pub fn ray(
+        &self,
+        basis: (Vec3A, Vec3A, Vec3A),
+        x: f32,
+        y: f32,
+        lens: [f32; 2],
+    ) -> (Vec3A, Vec3A) {
+        let (r, u, f) = basis;
+        let origin = Vec3A::from(self.position);
+        match self.projection {
+            Projection::Pinhole => (origin, self.ray_dir(basis, x, y)),
+            Projection::ThinLens {
+                aperture_radius,
+                focus_distance,
+            } => {
+                let tan = (self.fov_deg.to_radians() * 0.5).tan();
+                let aspect = self.width as f32 / self.height as f32;
+                let sx = (2.0 * x / self.width as f32 - 1.0) * tan * aspect;
+                let sy = (1.0 - 2.0 * y / self.height as f32) * tan;
+                // Where the pinhole ray of this pixel crosses the plane in focus.
+                let focus = origin + (f + r * sx + u * sy) * focus_distance;
+                // A uniform point of the aperture disc.
+                let rad = aperture_radius * lens[0].sqrt();
+                let (s, c) = (2.0 * std::f32::consts::PI * lens[1]).sin_cos();
+                let o = origin + r * (rad * c) + u * (rad * s);
+                (o, (focus - o).normalize())
+            }
+            Projection::Orthographic {
+                half_width,
+                half_height,
+            } => {
+                let sx = (2.0 * x / self.width as f32 - 1.0) * half_width;
+                let sy = (1.0 - 2.0 * y / self.height as f32) * half_height;
+                (origin + r * sx + u * sy, f)
+            }
+        }
     }
 
     /// True when direction `d` (unit) lies inside the view frustum.
@@ -151,19 +195,22 @@ pub fn render_with_progress(
     let start = Instant::now();
     let (w, h) = (view.width as usize, view.height as usize);
     let basis = view.basis();
-    let origin = Vec3A::from(view.position);
     let reach = settings.filter.reach();
     let splats = settings.filter != PixelFilter::Box;
     // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
     let band = 2 * reach + 1;
+    let thin_lens = matches!(view.projection, Projection::ThinLens { .. });
     let render_pixel = |x: usize, y: usize, splat: &mut [(DVec3, f64)]| -> PixelAcc {
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
+        // The aperture has its own stream, so pinhole renders keep their samples.
+        let lens_key = thin_lens.then(|| hash_key(&[key, 0x1E45]));
         let mut acc = PixelAcc::default();
         for i in 0..settings.spp {
             let mut s = SampleStream::new(key, i);
             // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
             let j = s.next_2d();
-            let d = view.ray_dir(basis, x as f32 + j[0], y as f32 + j[1]);
+            let lens = lens_key.map_or([0.5; 2], |k| SampleStream::new(k, i).next_2d());
+            let (origin, d) = view.ray(basis, x as f32 + j[0], y as f32 + j[1], lens);
             let p = trace(
                 scene,
                 origin,

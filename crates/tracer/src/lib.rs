@@ -1,6 +1,7 @@
 //! The renderer: a two-level obvhs CWBVH ([`Geometry`] over per-mesh [`Accel`]s), materials
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
-//! ([`SampleStream`]), BSDFs, the light set, a path tracer with next-event estimation and MIS
+//! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
+//! through a [`Distribution2D`]), a path tracer with next-event estimation and MIS
 //! ([`trace`]), the film with its AOVs ([`render`] → [`Frame`]) and the eye-centred
 //! hemispherical sensor ([`eye_sensor`]).
 //!

@@ -1,9 +1,10 @@
 //! Renders with known answers: white furnace, closed emitting sphere, determinism across
 //! thread counts, and the eye sensor's closed forms (estimators.md §1).
+mod common;
+
+use common::settings;
 use eyeadapt_scene::{Camera, Light, Material, Mesh, Scene, sphere_mesh};
-use eyeadapt_tracer::{
-    EyeSettings, Frame, PathSettings, RenderSettings, SceneData, View, eye_sensor, render,
-};
+use eyeadapt_tracer::{EyeSettings, Frame, PathSettings, SceneData, View, eye_sensor, render};
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
 
@@ -15,19 +16,7 @@ fn camera(position: Vec3, look_at: Vec3, w: u32, h: u32) -> Camera {
         fov_deg: 60.0,
         width: w,
         height: h,
-    }
-}
-
-fn settings(spp: u32, seed: u64, max_depth: i32) -> RenderSettings {
-    RenderSettings {
-        spp,
-        path: PathSettings {
-            max_depth,
-            rr_depth: 5,
-        },
-        seed,
-        frame: 0,
-        filter: eyeadapt_scene::PixelFilter::Box,
+        projection: eyeadapt_scene::Projection::Pinhole,
     }
 }
 
@@ -78,13 +67,12 @@ fn assert_converges(px: &[([f64; 3], [f64; 3])], expected: [f64; 3]) {
         worst.0,
         px[worst.1]
     );
-    for c in 0..3 {
+    for (c, e) in expected.iter().enumerate() {
         let m = px.iter().map(|p| p.0[c]).sum::<f64>() / px.len() as f64;
         let se = (px.iter().map(|p| p.1[c] * p.1[c]).sum::<f64>()).sqrt() / px.len() as f64;
         assert!(
-            (m - expected[c]).abs() < 3.0 * se.max(1e-9),
-            "image mean {m} vs {} (se {se})",
-            expected[c]
+            (m - e).abs() < 3.0 * se.max(1e-9),
+            "image mean {m} vs {e} (se {se})"
         );
     }
 }
@@ -212,6 +200,7 @@ fn eye_view(forward: Vec3) -> View {
         fov_deg: 50.0,
         width: 64,
         height: 48,
+        projection: eyeadapt_scene::Projection::Pinhole,
     }
 }
 

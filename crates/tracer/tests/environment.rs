@@ -1,12 +1,15 @@
 //! Environment maps and the sun: the map's sampling density against its own pdf (∫ = 1, a χ²
 //! test of sampled directions), a constant map's furnace, and the eye sensor against an
 //! independent estimate (a cube map rendered from the eye, integrated with the cardioid).
+mod common;
+
+use common::settings;
 use eyeadapt_scene::{
     EnvironmentMap, Image, Light, Material, Scene, box_mesh, quad_mesh, sphere_mesh,
 };
 use eyeadapt_tracer::{
-    Environment, EyeSettings, PathSettings, RenderSettings, SampleStream, SceneData, View,
-    eye_sensor, hash_key, luminance, render,
+    Environment, EyeSettings, PathSettings, SampleStream, SceneData, View, eye_sensor, hash_key,
+    luminance, render,
 };
 use glam::{DVec3, Mat3, Vec3, Vec3A};
 use std::f64::consts::PI;
@@ -137,6 +140,7 @@ fn a_constant_envmap_is_a_white_furnace() {
         fov_deg: 40.0,
         width: 12,
         height: 8,
+        projection: eyeadapt_scene::Projection::Pinhole,
     };
     let mut sum = DVec3::ZERO;
     let mut worst = 0.0f64;
@@ -156,19 +160,6 @@ fn a_constant_envmap_is_a_white_furnace() {
     );
     // Every pixel of every render near L (a white sphere in a uniform sky is invisible).
     assert!(worst < 0.25, "worst pixel off by {worst}");
-}
-
-fn settings(spp: u32, seed: u64, max_depth: i32) -> RenderSettings {
-    RenderSettings {
-        spp,
-        path: PathSettings {
-            max_depth,
-            rr_depth: 5,
-        },
-        seed,
-        frame: 0,
-        filter: eyeadapt_scene::PixelFilter::Box,
-    }
 }
 
 /// Linear sRGB (D65) to CIE xy.
@@ -217,6 +208,7 @@ fn courtyard() -> (Scene, View, Vec3, Vec3) {
         fov_deg: 50.0,
         width: 64,
         height: 48,
+        projection: eyeadapt_scene::Projection::Pinhole,
     };
     (scene, view, sun_dir, sun_e)
 }
@@ -242,6 +234,7 @@ fn cube_map_estimate(data: &SceneData, view: &View, n: u32, spp: u32, depth: i32
             fov_deg: 90.0,
             width: n,
             height: n,
+            projection: eyeadapt_scene::Projection::Pinhole,
         };
         let img = render(data, &face, &settings(spp, 100 + k as u64, depth));
         let (r, u, f) = face.basis();

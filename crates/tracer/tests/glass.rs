@@ -33,6 +33,7 @@ fn shoot(s: &Scene, spp: u32, max_depth: i32) -> Frame {
         fov_deg: 30.0,
         width: 16,
         height: 16,
+        projection: Default::default(),
     });
     let settings = RenderSettings {
         spp,

@@ -72,6 +72,7 @@ fn scene(instanced: bool) -> Scene {
         fov_deg: 50.0,
         width: 40,
         height: 30,
+        projection: eyeadapt_scene::Projection::Pinhole,
     });
     s
 }

@@ -36,6 +36,7 @@ fn half_black() -> (SceneData, View) {
         fov_deg: 40.0,
         width: 16,
         height: 40,
+        projection: eyeadapt_scene::Projection::Pinhole,
     });
     (SceneData::new(&scene), view)
 }

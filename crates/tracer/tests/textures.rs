@@ -36,6 +36,7 @@ fn the_albedo_aov_reads_textured_reflectance() {
         fov_deg: 30.0,
         width: 16,
         height: 16,
+        projection: eyeadapt_scene::Projection::Pinhole,
     });
     let settings = RenderSettings {
         spp: 4,

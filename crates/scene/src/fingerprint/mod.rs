@@ -9,7 +9,8 @@
 use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
     Bitmap, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light, Mesh,
-    Orientation, Param, PixelFilter, RenderDefaults, Scene, Texture, Transform, WrapMode,
+    Orientation, Param, PixelFilter, Projection, RenderDefaults, Scene, Texture, Transform,
+    WrapMode,
 };
 use crate::{Interpolation, Track};
 use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
@@ -287,6 +288,7 @@ impl Feed for Camera {
             fov_deg,
             width,
             height,
+            projection,
         } = self;
         position.feed(h);
         look_at.feed(h);
@@ -294,6 +296,25 @@ impl Feed for Camera {
         fov_deg.feed(h);
         width.feed(h);
         height.feed(h);
+        match *projection {
+            Projection::Pinhole => tag(h, 0),
+            Projection::ThinLens {
+                aperture_radius,
+                focus_distance,
+            } => {
+                tag(h, 1);
+                aperture_radius.feed(h);
+                focus_distance.feed(h);
+            }
+            Projection::Orthographic {
+                half_width,
+                half_height,
+            } => {
+                tag(h, 2);
+                half_width.feed(h);
+                half_height.feed(h);
+            }
+        }
     }
 }
 

@@ -219,5 +219,6 @@ fn scene_camera(file: &GltfFile, cam: &AnimatedCamera) -> Result<Camera, SceneEr
         fov_deg: cam.fov_deg as f32,
         width: DEFAULT_WIDTH,
         height,
+        projection: crate::Projection::Pinhole,
     })
 }

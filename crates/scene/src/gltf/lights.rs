@@ -66,10 +66,51 @@ pub fn light(
                 falloff_deg: inner_cone_angle.to_degrees().clamp(0.0, cone_deg),
             })
         }
-        // Lux is lm/m²: the sun's irradiance in W/m² is lux / 683, travelling down the node's −z.
-        Kind::Directional => Some(Light::Directional {
+        // Lux over 683 lm/W is irradiance in W/m² on a surface facing the light.
+        Kind::Directional if direction.length() > 0.0 => Some(Light::Directional {
             direction,
             irradiance: intensity / LUMENS_PER_WATT,
         }),
+        Kind::Directional => {
+            warn(
+                format!("{here}/type"),
+                "a directional light whose node collapses its direction is left out".into(),
+            );
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_directional_light_is_a_sun_in_watts_per_square_metre() {
+        let json = br#"{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+            "extensions": {"KHR_lights_punctual": {"lights": [
+                {"type": "directional", "color": [1.0, 0.5, 0.25], "intensity": 1366.0}]}}}"#;
+        let doc = gltf::Gltf::from_slice(json).unwrap();
+        let l = doc.lights().unwrap().next().unwrap();
+        let mut warnings = Vec::new();
+        // A node turned 90° about +y: its −z (the light's direction) becomes −x.
+        let to_world = DMat4::from_rotation_y(std::f64::consts::FRAC_PI_2);
+        let got = light(Path::new("sun.gltf"), &l, to_world, &mut warnings).unwrap();
+        assert!(warnings.is_empty());
+        let Light::Directional {
+            direction,
+            irradiance,
+        } = got
+        else {
+            panic!("{got:?}")
+        };
+        assert!(
+            (direction - glam::Vec3::NEG_X).length() < 1e-6,
+            "{direction}"
+        );
+        assert!(
+            (irradiance - Rgb::new(2.0, 1.0, 0.5)).length() < 1e-5,
+            "{irradiance}"
+        );
     }
 }

@@ -258,12 +258,16 @@ fn read_vertices(
     let uv_idx = both(["u", "v"])
         .or_else(|| both(["texture_u", "texture_v"]))
         .or_else(|| both(["s", "t"]));
-    let rgb_idx = [["r", "g", "b"], ["red", "green", "blue"]]
-        .into_iter()
-        .find_map(|names| match names.map(find) {
-            [Some(r), Some(g), Some(b)] => Some([r, g, b]),
-            _ => None,
-        });
+    let rgb_idx = [
+        ["r", "g", "b"],
+        ["red", "green", "blue"],
+        ["color_0", "color_1", "color_2"],
+    ]
+    .into_iter()
+    .find_map(|names| match names.map(find) {
+        [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+        _ => None,
+    });
     // 8-bit colours are 0..255.
     let rgb_scale = rgb_idx.map_or(1.0, |i| match &el.props[i[0]] {
         Prop::Scalar(_, Scalar::U8) => 1.0 / 255.0,

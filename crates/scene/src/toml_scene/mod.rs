@@ -262,6 +262,7 @@ impl Ctx<'_> {
             fov_deg: fov,
             width,
             height,
+            projection: crate::Projection::Pinhole,
         }
     }
 

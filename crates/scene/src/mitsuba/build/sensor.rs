@@ -1,7 +1,7 @@
 //! The sensor and what it nests (film, rfilter, sampler).
 use super::Builder;
 use crate::mitsuba::xml::{ChildKind, Obj, Value};
-use crate::{Camera, PixelFilter};
+use crate::{Camera, PixelFilter, Projection};
 use glam::{DMat4, DVec3};
 
 const SAMPLERS: &[&str] = &[
@@ -38,11 +38,11 @@ impl<'t> Builder<'t> {
     }
 
     pub(super) fn sensor(&mut self, o: &'t Obj) {
-        if o.kind != "perspective" {
+        if !matches!(o.kind.as_str(), "perspective" | "thinlens" | "orthographic") {
             self.error(
                 o.at,
                 format!(
-                    "unsupported {}: eyeadapt supports the perspective (pinhole) sensor only",
+                    "unsupported {}: eyeadapt supports the perspective, thinlens and orthographic sensors",
                     o.describe()
                 ),
             );
@@ -52,8 +52,7 @@ impl<'t> Builder<'t> {
         // Accepted and ignored: eyeadapt does not clip (documented in docs/mitsuba.md).
         self.float(o, "near_clip");
         self.float(o, "far_clip");
-        // A pinhole is in focus everywhere: Mitsuba's perspective sensor ignores it too.
-        self.float(o, "focus_distance");
+        let lens = self.lens(o);
         let (width, height) = match self.nested(o, "film") {
             Some(f) => self.film(f),
             None => (768, 576),
@@ -62,11 +61,87 @@ impl<'t> Builder<'t> {
             self.sampler(s);
         }
         let aspect = width as f64 / height as f64;
+        let vertical = if o.kind == "orthographic" {
+            None
+        } else {
+            self.field_of_view(o, aspect)
+        };
+        self.finish(o);
+        let position = to_world.transform_point3(DVec3::ZERO);
+        let forward = to_world.transform_vector3(DVec3::Z);
+        let up = to_world.transform_vector3(DVec3::Y);
+        let left = to_world.transform_vector3(DVec3::X);
+        if left.cross(up).dot(forward) <= 0.0
+            || forward.cross(up).length() < 1e-9 * forward.length() * up.length()
+        {
+            let at = self.prop(o, "to_world").map_or(o.at, |p| p.at);
+            self.error(
+                at,
+                format!("{}: to_world mirrors or collapses the view (eyeadapt's camera cannot mirror the image)", o.describe()),
+            );
+            return;
+        }
+        // Mitsuba's orthographic view spans camera x in [−1, 1] and y in [−1, 1] / aspect,
+        // scaled by `to_world`.
+        let projection = match lens {
+            _ if o.kind == "orthographic" => Projection::Orthographic {
+                half_width: left.length() as f32,
+                half_height: (up.length() / aspect) as f32,
+            },
+            Some((aperture_radius, focus_distance)) => Projection::ThinLens {
+                aperture_radius,
+                focus_distance,
+            },
+            None => Projection::Pinhole,
+        };
+        self.scene.camera = Some(Camera {
+            position: position.as_vec3(),
+            look_at: (position + forward.normalize()).as_vec3(),
+            up: up.normalize().as_vec3(),
+            fov_deg: vertical.unwrap_or(40.0) as f32,
+            width,
+            height,
+            projection,
+        });
+    }
+
+    /// `thinlens`: `aperture_radius` and `focus_distance`, both needed (as in Mitsuba). A
+    /// perspective sensor's `focus_distance` is accepted and ignored: a pinhole is in focus
+    /// everywhere (Mitsuba ignores it too).
+    fn lens(&mut self, o: &'t Obj) -> Option<(f32, f32)> {
+        if o.kind != "thinlens" {
+            if o.kind == "perspective" {
+                self.float(o, "focus_distance");
+            }
+            return None;
+        }
+        let get = |b: &mut Self, name: &str| match b.float(o, name) {
+            Some(x) if x.is_finite() && x > 0.0 => Some(x as f32),
+            Some(x) => {
+                let at = b.prop(o, name).map_or(o.at, |p| p.at);
+                b.error(at, format!("{}: {name} {x} must be > 0", o.describe()));
+                None
+            }
+            None => {
+                b.error(
+                    o.at,
+                    format!("{} needs a <float name=\"{name}\">", o.describe()),
+                );
+                None
+            }
+        };
+        let r = get(self, "aperture_radius");
+        let f = get(self, "focus_distance");
+        r.zip(f)
+    }
+
+    /// The vertical field of view (degrees) from `fov`/`fov_axis` or `focal_length`.
+    fn field_of_view(&mut self, o: &'t Obj, aspect: f64) -> Option<f64> {
         let fov = self.float(o, "fov");
         let focal = self
             .prop(o, "focal_length")
             .map(|p| (p.at, p.value.clone()));
-        let vertical = match (fov, focal) {
+        match (fov, focal) {
             (Some(_), Some((at, _))) => {
                 self.error(
                     at,
@@ -132,30 +207,7 @@ impl<'t> Builder<'t> {
                     vertical_fov(fov, "diagonal", aspect)
                 })
             }
-        };
-        self.finish(o);
-        let position = to_world.transform_point3(DVec3::ZERO);
-        let forward = to_world.transform_vector3(DVec3::Z);
-        let up = to_world.transform_vector3(DVec3::Y);
-        let left = to_world.transform_vector3(DVec3::X);
-        if left.cross(up).dot(forward) <= 0.0
-            || forward.cross(up).length() < 1e-9 * forward.length() * up.length()
-        {
-            let at = self.prop(o, "to_world").map_or(o.at, |p| p.at);
-            self.error(
-                at,
-                format!("{}: to_world mirrors or collapses the view (eyeadapt's camera cannot mirror the image)", o.describe()),
-            );
-            return;
         }
-        self.scene.camera = Some(Camera {
-            position: position.as_vec3(),
-            look_at: (position + forward.normalize()).as_vec3(),
-            up: up.normalize().as_vec3(),
-            fov_deg: vertical.unwrap_or(40.0) as f32,
-            width,
-            height,
-        });
     }
 
     pub(super) fn film(&mut self, f: &'t Obj) -> (u32, u32) {
