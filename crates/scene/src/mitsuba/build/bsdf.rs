@@ -109,8 +109,12 @@ impl<'t> Builder<'t> {
             .iter()
             .filter(|c| match &c.kind {
                 ChildKind::Obj(b) => b.tag == "bsdf",
-                // A named reference is a parameter (a texture), not a nested BSDF.
-                ChildKind::Ref(_) => c.name.is_none(),
+                // A reference is a nested BSDF when it names one (Mitsuba's scenes write both
+                // `<ref id=…>` and `<ref name="bsdf" id=…>`); a named reference to anything
+                // else is a parameter (a texture).
+                ChildKind::Ref(id) => {
+                    c.name.is_none() || self.ids.get(id.as_str()).is_some_and(|r| r.tag == "bsdf")
+                }
             })
             .collect();
         for c in &inner {
