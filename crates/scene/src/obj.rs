@@ -281,7 +281,7 @@ fn mesh_of(path: &Path, model: &tobj::Model) -> Result<Mesh, ConvertError> {
     let malformed = |what: &str| -> ConvertError {
         format!("OBJ {}: model \"{}\" {what}", path.display(), model.name).into()
     };
-    if m.positions.len() % 3 != 0 || m.indices.len() % 3 != 0 {
+    if !m.positions.len().is_multiple_of(3) || !m.indices.len().is_multiple_of(3) {
         return Err(malformed("is malformed"));
     }
     let positions: Vec<Vec3> = m
