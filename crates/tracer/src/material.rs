@@ -10,6 +10,8 @@ use crate::dielectric::RoughDielectric;
 use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
+use crate::principled::Principled;
+use crate::principled_thin::PrincipledThin;
 use crate::texture;
 use eyeadapt_scene::{Bsdf as SceneBsdf, Material, Param, Rgb, Scene, Texture, TextureId};
 use glam::Vec3A;
@@ -207,6 +209,17 @@ impl Materials {
                     t: specular_transmittance.into(),
                 })
             }
+            SceneBsdf::Principled(ref p) => Bsdf::Principled(Principled::at(
+                p,
+                front,
+                |c| self.rgb(c, si),
+                |x| self.number(x, si),
+            )),
+            SceneBsdf::PrincipledThin(ref p) => Bsdf::PrincipledThin(PrincipledThin::at(
+                p,
+                |c| self.rgb(c, si),
+                |x| self.number(x, si),
+            )),
             // Flattened into the entry.
             SceneBsdf::OneSided(_) | SceneBsdf::Mask { .. } | SceneBsdf::NormalMap { .. } => {
                 unreachable!()
