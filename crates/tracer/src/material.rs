@@ -7,7 +7,6 @@
 //! product of (a mask in a mask passes light where either does).
 use crate::bsdf::Bsdf;
 use crate::dielectric::RoughDielectric;
-use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
 use crate::principled::Principled;
@@ -104,12 +103,13 @@ impl Materials {
         }
     }
 
-    /// A number parameter; a texture gives its luminance (Mitsuba's `eval_1`).
+    /// A number parameter; a texture gives its luminance (Mitsuba's `eval_1`, see
+    /// [`texture::eval_1`]).
     #[inline]
     fn number(&self, p: Param<f32>, si: &SurfaceInteraction) -> f32 {
         match p {
             Param::Const(x) => x,
-            Param::Texture(t) => luminance(texture::eval(&self.textures[t.0 as usize], si)),
+            Param::Texture(t) => texture::eval_1(&self.textures[t.0 as usize], si),
         }
     }
 
