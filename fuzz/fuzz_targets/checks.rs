@@ -318,5 +318,63 @@ fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
         Bsdf::NormalMap { normals, bsdf } => {
             (normals.0 as usize) < textures && bsdf_ok(bsdf, textures)
         }
+        Bsdf::Principled(p) => principled_ok(p, textures),
+        Bsdf::PrincipledThin(p) => principled_thin_ok(p, textures),
     }
+}
+
+/// A weight is a texture that exists or a constant in `[0, max]`.
+fn weight_ok(p: &Param<f32>, max: f32, textures: usize) -> bool {
+    match p {
+        Param::Const(x) => (0.0..=max).contains(x),
+        Param::Texture(t) => (t.0 as usize) < textures,
+    }
+}
+
+fn base_colour_ok(p: &Param<Vec3>, textures: usize) -> bool {
+    match p {
+        Param::Const(c) => check_colour(*c).is_ok() && c.max_element() <= 1.0,
+        Param::Texture(t) => (t.0 as usize) < textures,
+    }
+}
+
+/// Every weight of a principled BSDF in [0, 1], its IOR positive and finite.
+fn principled_ok(p: &eyeadapt_scene::Principled, textures: usize) -> bool {
+    let weights = [
+        &p.roughness,
+        &p.metallic,
+        &p.spec_tint,
+        &p.anisotropic,
+        &p.sheen,
+        &p.sheen_tint,
+        &p.clearcoat,
+        &p.clearcoat_gloss,
+        &p.spec_trans,
+        &p.flatness,
+    ];
+    base_colour_ok(&p.base_color, textures)
+        && weights.iter().all(|w| weight_ok(w, 1.0, textures))
+        && p.eta.is_finite()
+        && p.eta > 0.0
+}
+
+/// As [`principled_ok`], with `diff_trans` in [0, 2] and a positive IOR (or a texture).
+fn principled_thin_ok(p: &eyeadapt_scene::PrincipledThin, textures: usize) -> bool {
+    let weights = [
+        &p.roughness,
+        &p.spec_tint,
+        &p.anisotropic,
+        &p.sheen,
+        &p.sheen_tint,
+        &p.spec_trans,
+        &p.flatness,
+    ];
+    let eta = match p.eta {
+        Param::Const(e) => e.is_finite() && e > 0.0,
+        Param::Texture(t) => (t.0 as usize) < textures,
+    };
+    base_colour_ok(&p.base_color, textures)
+        && weights.iter().all(|w| weight_ok(w, 1.0, textures))
+        && weight_ok(&p.diff_trans, 2.0, textures)
+        && eta
 }

@@ -36,7 +36,7 @@
 //! type = "thin_dielectric"          # a thin sheet, light passes undeflected
 //! ior = 1.5
 //! ```
-use crate::{Rgb, TextureId};
+use crate::{Principled, PrincipledThin, Rgb, TextureId};
 
 /// A material parameter: a constant, or a texture looked up at each hit (a texture read as a
 /// number uses its luminance, as Mitsuba's `eval_1` does).
@@ -141,6 +141,10 @@ pub enum Bsdf {
     /// (Mitsuba's `normalmap`: the texture's RGB in [0, 1] is the normal 2·rgb − 1 in the
     /// frame of the shading normal and ∂p/∂u).
     NormalMap { normals: TextureId, bsdf: Box<Bsdf> },
+    /// Mitsuba's `principled` (Disney's BSDF, `principled.rs`).
+    Principled(Box<Principled>),
+    /// Mitsuba's `principledthin` (a thin principled sheet, `principled.rs`).
+    PrincipledThin(Box<PrincipledThin>),
 }
 
 /// A named material.

@@ -1,10 +1,14 @@
 //! BSDFs in the local shading frame (+z = shading normal, turned towards the viewer, so every
 //! surface is two-sided for reflection; a transmitting BSDF samples `wi.z < 0`). `f` values
-//! exclude the cosine. The dielectrics are in `dielectric.rs`.
+//! exclude the cosine. The dielectrics are in `dielectric.rs`, the principled BSDFs in
+//! `principled.rs` and `principled_thin.rs`.
 use crate::dielectric::{RoughDielectric, sample_smooth, sample_thin};
+use crate::integrator::Frame;
 #[cfg(doc)]
 use crate::microfacet::internal_diffuse_reflectance;
 use crate::microfacet::{Microfacet, fresnel_conductor, fresnel_dielectric};
+use crate::principled::Principled;
+use crate::principled_thin::PrincipledThin;
 use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -50,6 +54,10 @@ pub enum Bsdf {
         t: Vec3A,
     },
     RoughDielectric(RoughDielectric),
+    /// Mitsuba's `principled`; it handles both sides itself.
+    Principled(Principled),
+    /// Mitsuba's `principledthin`.
+    PrincipledThin(PrincipledThin),
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -166,6 +174,37 @@ impl Bsdf {
             Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } | Bsdf::RoughDielectric(_) => {
                 true
             }
+            Bsdf::Principled(p) => p.transmits(),
+            Bsdf::PrincipledThin(p) => p.transmits(),
+        }
+    }
+
+    /// The BSDF with its anisotropy turned to the surface's tangent ∂p/∂u (world space),
+    /// projected into `frame` (the shading frame), as Mitsuba orients it; isotropic BSDFs are
+    /// returned unchanged.
+    #[inline]
+    pub fn oriented(self, frame: &Frame, dpdu: Vec3A) -> Bsdf {
+        let turn = |g: crate::principled_lobes::AnisoGgx| {
+            let t = dpdu - frame.n * frame.n.dot(dpdu);
+            let (c, s) = (t.dot(frame.s), t.dot(frame.t));
+            let l = (c * c + s * s).sqrt();
+            if l > 0.0 && l.is_finite() {
+                g.turned(c / l, s / l)
+            } else {
+                g
+            }
+        };
+        match self {
+            Bsdf::Principled(mut p) if p.spec.is_anisotropic() => {
+                p.spec = turn(p.spec);
+                Bsdf::Principled(p)
+            }
+            Bsdf::PrincipledThin(mut p) if p.spec.is_anisotropic() => {
+                p.spec = turn(p.spec);
+                p.trans = turn(p.trans);
+                Bsdf::PrincipledThin(p)
+            }
+            b => b,
         }
     }
 
@@ -178,12 +217,17 @@ impl Bsdf {
     }
 
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
-        if let Bsdf::RoughDielectric(d) = self {
-            return if wo.z > 0.0 {
-                d.eval(wo, wi)
-            } else {
-                Vec3A::ZERO
-            };
+        match self {
+            Bsdf::RoughDielectric(d) => {
+                return if wo.z > 0.0 {
+                    d.eval(wo, wi)
+                } else {
+                    Vec3A::ZERO
+                };
+            }
+            Bsdf::Principled(p) => return p.eval(wo, wi),
+            Bsdf::PrincipledThin(p) => return p.eval(wo, wi),
+            _ => {}
         }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return Vec3A::ZERO;
@@ -193,7 +237,9 @@ impl Bsdf {
             Bsdf::Mirror { .. }
             | Bsdf::Dielectric { .. }
             | Bsdf::ThinDielectric { .. }
-            | Bsdf::RoughDielectric(_) => Vec3A::ZERO,
+            | Bsdf::RoughDielectric(_)
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_) => Vec3A::ZERO,
             Bsdf::RoughConductor {
                 ggx,
                 eta,
@@ -233,8 +279,11 @@ impl Bsdf {
     }
 
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        if let Bsdf::RoughDielectric(d) = self {
-            return if wo.z > 0.0 { d.pdf(wo, wi) } else { 0.0 };
+        match self {
+            Bsdf::RoughDielectric(d) => return if wo.z > 0.0 { d.pdf(wo, wi) } else { 0.0 },
+            Bsdf::Principled(p) => return p.pdf(wo, wi),
+            Bsdf::PrincipledThin(p) => return p.pdf(wo, wi),
+            _ => {}
         }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
@@ -244,7 +293,9 @@ impl Bsdf {
             Bsdf::Mirror { .. }
             | Bsdf::Dielectric { .. }
             | Bsdf::ThinDielectric { .. }
-            | Bsdf::RoughDielectric(_) => 0.0,
+            | Bsdf::RoughDielectric(_)
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_) => 0.0,
             Bsdf::RoughConductor { ggx, .. } => {
                 let m = (wo + wi).normalize();
                 ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12))
@@ -284,6 +335,8 @@ impl Bsdf {
             Bsdf::Dielectric { eta, r, t } => return Some(sample_smooth(wo, eta, r, t, u_lobe)),
             Bsdf::ThinDielectric { eta, r, t } => return Some(sample_thin(wo, eta, r, t, u_lobe)),
             Bsdf::RoughDielectric(d) => return d.sample(wo, u_lobe, u),
+            Bsdf::Principled(p) => return p.sample(wo, u_lobe, u),
+            Bsdf::PrincipledThin(p) => return p.sample(wo, u_lobe, u),
             Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample(wo, u)),
             Bsdf::Plastic {
                 ggx,

@@ -7,9 +7,10 @@
 //! product of (a mask in a mask passes light where either does).
 use crate::bsdf::Bsdf;
 use crate::dielectric::RoughDielectric;
-use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
+use crate::principled::Principled;
+use crate::principled_thin::PrincipledThin;
 use crate::texture;
 use eyeadapt_scene::{Bsdf as SceneBsdf, Material, Param, Rgb, Scene, Texture, TextureId};
 use glam::Vec3A;
@@ -102,12 +103,13 @@ impl Materials {
         }
     }
 
-    /// A number parameter; a texture gives its luminance (Mitsuba's `eval_1`).
+    /// A number parameter; a texture gives its luminance (Mitsuba's `eval_1`, see
+    /// [`texture::eval_1`]).
     #[inline]
     fn number(&self, p: Param<f32>, si: &SurfaceInteraction) -> f32 {
         match p {
             Param::Const(x) => x,
-            Param::Texture(t) => luminance(texture::eval(&self.textures[t.0 as usize], si)),
+            Param::Texture(t) => texture::eval_1(&self.textures[t.0 as usize], si),
         }
     }
 
@@ -207,6 +209,17 @@ impl Materials {
                     t: specular_transmittance.into(),
                 })
             }
+            SceneBsdf::Principled(ref p) => Bsdf::Principled(Principled::at(
+                p,
+                front,
+                |c| self.rgb(c, si),
+                |x| self.number(x, si),
+            )),
+            SceneBsdf::PrincipledThin(ref p) => Bsdf::PrincipledThin(PrincipledThin::at(
+                p,
+                |c| self.rgb(c, si),
+                |x| self.number(x, si),
+            )),
             // Flattened into the entry.
             SceneBsdf::OneSided(_) | SceneBsdf::Mask { .. } | SceneBsdf::NormalMap { .. } => {
                 unreachable!()

@@ -111,7 +111,7 @@ impl Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
-            bsdf: scene.materials.bsdf(si, front),
+            bsdf: scene.materials.bsdf(si, front).oriented(&frame, si.dpdu),
             opacity: scene.materials.opacity(si),
             p_front: offset(si.p, ng),
             p_back: offset(si.p, -ng),

@@ -1,8 +1,32 @@
 //! Texture lookups at a surface interaction: bitmaps (nearest or bilinear, with Mitsuba's wrap
 //! modes), checkerboards and interpolated vertex colours.
+use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use eyeadapt_scene::{FilterType, Image, Texture, WrapMode};
 use glam::{Vec2, Vec3A};
+
+/// A texture read as a number: its luminance, as Mitsuba's `eval_1`, which for a
+/// `checkerboard` also swaps the two colours (Mitsuba 3.9.1's `eval_1` tests the opposite
+/// parity to its `eval`; a roughness or weight checkerboard therefore lies where Mitsuba's
+/// does only with the swap).
+pub fn eval_1(tex: &Texture, si: &SurfaceInteraction) -> f32 {
+    let c = match tex {
+        Texture::Checkerboard {
+            color0,
+            color1,
+            to_uv,
+        } => eval(
+            &Texture::Checkerboard {
+                color0: *color1,
+                color1: *color0,
+                to_uv: *to_uv,
+            },
+            si,
+        ),
+        _ => eval(tex, si),
+    };
+    luminance(c)
+}
 
 /// The texture's colour at `si`.
 #[inline]
@@ -151,5 +175,22 @@ mod tests {
         assert_eq!(at(0.3, 0.1), 0.2);
         assert_eq!(at(0.3, 0.3), 0.4);
         assert_eq!(at(0.6, 0.1), 0.4);
+    }
+
+    /// Mitsuba 3.9.1 reads a checkerboard as a number with its colours the other way round
+    /// (its `eval_1` at uv (0.2, 0.2) gives color1, its `eval` color0).
+    #[test]
+    fn checkerboard_as_a_number_swaps_colours_as_mitsuba() {
+        let tex = Texture::Checkerboard {
+            color0: Rgb::splat(0.1),
+            color1: Rgb::splat(0.9),
+            to_uv: glam::Affine2::IDENTITY,
+        };
+        let mut si = SurfaceInteraction::default();
+        for (uv, colour, number) in [((0.2, 0.2), 0.1, 0.9), ((0.7, 0.2), 0.9, 0.1)] {
+            si.uv = Vec2::new(uv.0, uv.1);
+            assert!((eval(&tex, &si).x - colour).abs() < 1e-6);
+            assert!((eval_1(&tex, &si) - number).abs() < 1e-5);
+        }
     }
 }

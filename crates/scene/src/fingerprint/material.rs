@@ -1,6 +1,6 @@
 //! How materials feed a fingerprint: the BSDF tree, variant by variant.
 use super::{Feed, tag};
-use crate::{Bsdf, Distribution, Material};
+use crate::{Bsdf, Distribution, Material, Principled, PrincipledThin};
 use sha2::Sha256;
 
 impl Feed for Material {
@@ -108,6 +108,80 @@ impl Feed for Bsdf {
                 normals.0.feed(h);
                 bsdf.feed(h);
             }
+            Bsdf::Principled(p) => {
+                tag(h, 9);
+                p.feed(h);
+            }
+            Bsdf::PrincipledThin(p) => {
+                tag(h, 10);
+                p.feed(h);
+            }
+        }
+    }
+}
+
+impl Feed for Principled {
+    fn feed(&self, h: &mut Sha256) {
+        let Principled {
+            base_color,
+            roughness,
+            metallic,
+            spec_tint,
+            anisotropic,
+            sheen,
+            sheen_tint,
+            clearcoat,
+            clearcoat_gloss,
+            spec_trans,
+            flatness,
+            eta,
+        } = self;
+        base_color.feed(h);
+        for p in [
+            roughness,
+            metallic,
+            spec_tint,
+            anisotropic,
+            sheen,
+            sheen_tint,
+            clearcoat,
+            clearcoat_gloss,
+            spec_trans,
+            flatness,
+        ] {
+            p.feed(h);
+        }
+        eta.feed(h);
+    }
+}
+
+impl Feed for PrincipledThin {
+    fn feed(&self, h: &mut Sha256) {
+        let PrincipledThin {
+            base_color,
+            roughness,
+            spec_tint,
+            anisotropic,
+            sheen,
+            sheen_tint,
+            spec_trans,
+            flatness,
+            diff_trans,
+            eta,
+        } = self;
+        base_color.feed(h);
+        for p in [
+            roughness,
+            spec_tint,
+            anisotropic,
+            sheen,
+            sheen_tint,
+            spec_trans,
+            flatness,
+            diff_trans,
+            eta,
+        ] {
+            p.feed(h);
         }
     }
 }

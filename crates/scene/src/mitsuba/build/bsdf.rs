@@ -1,5 +1,5 @@
 //! BSDF plugins: diffuse, conductor, roughconductor, plastic, roughplastic, twosided, mask
-//! (the dielectrics are in `dielectric.rs`).
+//! (the dielectrics are in `dielectric.rs`, the principled BSDFs in `principled.rs`).
 //!
 //! Mitsuba's reflecting BSDFs are one-sided: their back sides are black unless a `twosided`
 //! wraps them. They are built as [`Bsdf::OneSided`], and `twosided` unwraps them again.
@@ -8,7 +8,7 @@ use crate::mitsuba::presets::CONDUCTOR_PRESETS;
 use crate::mitsuba::xml::{ChildKind, Obj};
 use crate::{Bsdf, Distribution, Param, Rgb};
 
-const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, mask, normalmap and twosided";
+const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, principled, principledthin, mask, normalmap and twosided";
 /// A BSDF as built from XML, before it becomes a material.
 #[derive(Clone, Debug)]
 pub(crate) struct BuiltBsdf {
@@ -73,6 +73,8 @@ impl<'t> Builder<'t> {
             "conductor" | "roughconductor" => one_sided(self.conductor(o)),
             "plastic" | "roughplastic" => one_sided(self.plastic(o)),
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(o),
+            "principled" => self.principled(o),
+            "principledthin" => self.principled_thin(o),
             _ => {
                 self.unsupported(o, BSDFS);
                 return None;

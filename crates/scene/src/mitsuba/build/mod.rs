@@ -14,6 +14,7 @@ mod dielectric;
 mod emitter;
 mod integrator;
 mod params;
+mod principled;
 mod sensor;
 mod shape;
 mod shapegroup;
