@@ -159,6 +159,7 @@ fn surface(cx: &mut Ctx, m: &gltf::Material) -> Result<Bsdf, Diagnostic> {
     if metallic >= 0.5 {
         return Ok(Bsdf::Conductor {
             alpha,
+            alpha_v: None,
             distribution: Distribution::Ggx,
             eta: Rgb::ZERO,
             k: Rgb::ONE,
@@ -233,6 +234,7 @@ fn glass(
             }
             Bsdf::RoughDielectric {
                 alpha,
+                alpha_v: None,
                 distribution: Distribution::Ggx,
                 eta: ior,
                 specular_reflectance: Rgb::ONE,

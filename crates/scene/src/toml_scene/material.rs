@@ -135,6 +135,7 @@ impl Ctx<'_> {
                 );
                 Bsdf::Conductor {
                     alpha,
+                    alpha_v: None,
                     distribution: Distribution::Ggx,
                     eta,
                     k,
@@ -217,6 +218,7 @@ impl Ctx<'_> {
         }
         Bsdf::RoughDielectric {
             alpha,
+            alpha_v: None,
             distribution: Distribution::Ggx,
             eta,
             specular_reflectance: r,
