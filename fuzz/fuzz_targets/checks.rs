@@ -280,12 +280,14 @@ fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
         Bsdf::Diffuse { reflectance } => colour(reflectance),
         Bsdf::Conductor {
             alpha,
+            alpha_v,
             distribution: _,
             eta,
             k,
             specular_reflectance,
         } => {
             number(alpha)
+                && alpha_v.as_ref().is_none_or(number)
                 && check_colour(*eta).is_ok()
                 && check_colour(*k).is_ok()
                 && colour(specular_reflectance)
@@ -308,11 +310,16 @@ fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
         } => glass(*eta, *specular_reflectance, *specular_transmittance),
         Bsdf::RoughDielectric {
             alpha,
+            alpha_v,
             distribution: _,
             eta,
             specular_reflectance,
             specular_transmittance,
-        } => number(alpha) && glass(*eta, *specular_reflectance, *specular_transmittance),
+        } => {
+            number(alpha)
+                && alpha_v.as_ref().is_none_or(number)
+                && glass(*eta, *specular_reflectance, *specular_transmittance)
+        }
         Bsdf::OneSided(inner) => bsdf_ok(inner, textures),
         Bsdf::Mask { opacity, bsdf } => number(opacity) && bsdf_ok(bsdf, textures),
         Bsdf::NormalMap { normals, bsdf } => {
@@ -320,6 +327,34 @@ fn bsdf_ok(bsdf: &Bsdf, textures: usize) -> bool {
         }
         Bsdf::Principled(p) => principled_ok(p, textures),
         Bsdf::PrincipledThin(p) => principled_thin_ok(p, textures),
+        Bsdf::BumpMap {
+            height,
+            scale,
+            bsdf,
+        } => (height.0 as usize) < textures && scale.is_finite() && bsdf_ok(bsdf, textures),
+        Bsdf::Blend { weight, bsdfs } => {
+            let weight_ok = match weight {
+                Param::Const(w) => (0.0..=1.0).contains(w),
+                Param::Texture(t) => (t.0 as usize) < textures,
+            };
+            weight_ok && bsdfs.iter().all(|b| bsdf_ok(b, textures))
+        }
+        Bsdf::Null => true,
+        Bsdf::PPlastic {
+            diffuse_reflectance,
+            specular_reflectance,
+            alpha,
+            alpha_v,
+            distribution: _,
+            eta,
+        } => {
+            colour(diffuse_reflectance)
+                && colour(specular_reflectance)
+                && number(alpha)
+                && alpha_v.as_ref().is_none_or(number)
+                && eta.is_finite()
+                && *eta > 0.0
+        }
     }
 }
 

@@ -89,7 +89,11 @@ pub enum Bsdf {
     Diffuse { reflectance: Param<Rgb> },
     /// Microfacet conductor with a per-channel complex IOR; `alpha == 0` is a perfect mirror.
     Conductor {
+        /// The roughness; along ∂p/∂u when `alpha_v` is given.
         alpha: Param<f32>,
+        /// The roughness along ∂p/∂v of an anisotropic surface (Mitsuba's `alpha_v`; `alpha`
+        /// is then its `alpha_u`); `None`: isotropic.
+        alpha_v: Option<Param<f32>>,
         distribution: Distribution,
         eta: Rgb,
         k: Rgb,
@@ -122,6 +126,8 @@ pub enum Bsdf {
     /// A rough dielectric interface (Walter et al. 2007), `eta` as for [`Bsdf::Dielectric`].
     RoughDielectric {
         alpha: Param<f32>,
+        /// As for [`Bsdf::Conductor`].
+        alpha_v: Option<Param<f32>>,
         distribution: Distribution,
         eta: f32,
         specular_reflectance: Rgb,
@@ -145,6 +151,36 @@ pub enum Bsdf {
     Principled(Box<Principled>),
     /// Mitsuba's `principledthin` (a thin principled sheet, `principled.rs`).
     PrincipledThin(Box<PrincipledThin>),
+    /// The inner BSDF with its shading normal perturbed by the gradient of a height field
+    /// (Mitsuba's `bumpmap`): the texture's value (a number) times `scale` displaces the
+    /// surface along its shading normal, in the frame of ∂p/∂u and ∂p/∂v.
+    BumpMap {
+        height: TextureId,
+        scale: f32,
+        bsdf: Box<Bsdf>,
+    },
+    /// A linear blend of two BSDFs (Mitsuba's `blendbsdf`): `bsdfs[0]` where `weight` is 0,
+    /// `bsdfs[1]` where it is 1 (a texture is read as a number and clamped to [0, 1]).
+    Blend {
+        weight: Param<f32>,
+        bsdfs: Box<[Bsdf; 2]>,
+    },
+    /// No surface at all (Mitsuba's `null`): rays pass straight through, as through a mask
+    /// of opacity 0.
+    Null,
+    /// Mitsuba's `pplastic` as its RGB variants render it (no polarisation): a microfacet
+    /// Fresnel reflection (`specular_reflectance` × F × D × G / (4 cos cos)) plus the diffuse
+    /// base attenuated by the Fresnel transmittance in and out, without roughplastic's
+    /// internal-scattering normalisation.
+    PPlastic {
+        diffuse_reflectance: Param<Rgb>,
+        specular_reflectance: Param<Rgb>,
+        alpha: Param<f32>,
+        alpha_v: Option<Param<f32>>,
+        distribution: Distribution,
+        /// Interior over exterior IOR.
+        eta: f32,
+    },
 }
 
 /// A named material.

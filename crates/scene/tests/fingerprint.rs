@@ -42,6 +42,7 @@ fn full() -> Scene {
                 bsdf: Bsdf::Conductor {
                     distribution: Distribution::Ggx,
                     alpha: Param::Const(0.2),
+                    alpha_v: None,
                     eta: Rgb::splat(0.2),
                     k: Rgb::splat(3.0),
                     specular_reflectance: Param::Const(Rgb::ONE),

@@ -398,14 +398,20 @@ fn supported_plugins_load() {
 }
 
 #[test]
-fn approximations_are_warnings() {
+fn anisotropic_roughness_is_kept_not_approximated() {
     let s = load(
         "<shape type=\"cube\"><bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.4\"/></bsdf></shape><emitter type=\"constant\"/><sensor type=\"perspective\"><film type=\"hdrfilm\"/></sensor>",
     )
     .unwrap();
     let all: Vec<String> = s.warnings.iter().map(|w| w.to_string()).collect();
-    assert_eq!(all.len(), 1, "{all:#?}");
-    assert!(all.iter().any(|w| w.contains("anisotropic")));
+    assert!(all.is_empty(), "{all:#?}");
+    match one_sided(&s.materials[0].bsdf) {
+        Bsdf::Conductor { alpha, alpha_v, .. } => {
+            assert_eq!(alpha, Param::Const(0.1));
+            assert_eq!(alpha_v, Some(Param::Const(0.4)));
+        }
+        other => panic!("{other:?}"),
+    }
     // No <rfilter>: Mitsuba's default Gaussian.
     assert_eq!(s.render.filter, Some(PixelFilter::GAUSSIAN));
 }
@@ -526,6 +532,7 @@ fn dielectrics_load_with_mitsubas_iors_and_included_files() {
         rough.materials[0].bsdf,
         Bsdf::RoughDielectric {
             alpha: 0.2.into(),
+            alpha_v: None,
             distribution: Distribution::Beckmann,
             eta: 1.333,
             specular_reflectance: Vec3::ONE,

@@ -7,6 +7,7 @@ use crate::integrator::Frame;
 #[cfg(doc)]
 use crate::microfacet::internal_diffuse_reflectance;
 use crate::microfacet::{Microfacet, fresnel_conductor, fresnel_dielectric};
+use crate::pplastic::PPlastic;
 use crate::principled::Principled;
 use crate::principled_thin::PrincipledThin;
 use eyeadapt_scene::Distribution;
@@ -58,6 +59,8 @@ pub enum Bsdf {
     Principled(Principled),
     /// Mitsuba's `principledthin`.
     PrincipledThin(PrincipledThin),
+    /// Mitsuba's `pplastic` without polarisation (`pplastic.rs`).
+    PPlastic(PPlastic),
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -143,6 +146,39 @@ impl Bsdf {
         }
     }
 
+    /// An anisotropic microfacet conductor (roughness `alpha_u` along the shading frame's +x,
+    /// `alpha_v` along +y, each at least 1e-4); both ≤ 1e-4 is a perfect mirror.
+    pub fn conductor_uv(
+        alpha_u: f32,
+        alpha_v: f32,
+        distribution: Distribution,
+        eta: Vec3A,
+        k: Vec3A,
+        specular: Vec3A,
+    ) -> Bsdf {
+        if alpha_u.max(alpha_v) <= 1e-4 {
+            Bsdf::Mirror { eta, k, specular }
+        } else {
+            Bsdf::RoughConductor {
+                ggx: Microfacet::anisotropic(alpha_u.max(1e-4), alpha_v.max(1e-4), distribution),
+                eta,
+                k,
+                specular,
+            }
+        }
+    }
+
+    /// True when the BSDF depends on the azimuth around the normal (anisotropic roughness):
+    /// its shading frame's +x must then follow ∂p/∂u.
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Bsdf::RoughConductor { ggx, .. } => ggx.alpha != ggx.alpha_v,
+            Bsdf::RoughDielectric(d) => d.md.alpha != d.md.alpha_v,
+            Bsdf::PPlastic(p) => p.md.alpha != p.md.alpha_v,
+            _ => false,
+        }
+    }
+
     /// The plastic over base `reflectance`; `fdr` is the internal diffuse reflectance of the
     /// coating's `ior` ([`internal_diffuse_reflectance`], computed once per material).
     pub fn plastic(
@@ -170,7 +206,8 @@ impl Bsdf {
             Bsdf::Diffuse { .. }
             | Bsdf::RoughConductor { .. }
             | Bsdf::Mirror { .. }
-            | Bsdf::Plastic { .. } => false,
+            | Bsdf::Plastic { .. }
+            | Bsdf::PPlastic(_) => false,
             Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } | Bsdf::RoughDielectric(_) => {
                 true
             }
@@ -229,6 +266,9 @@ impl Bsdf {
             Bsdf::PrincipledThin(p) => return p.eval(wo, wi),
             _ => {}
         }
+        if let Bsdf::PPlastic(p) = self {
+            return p.eval(wo, wi);
+        }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return Vec3A::ZERO;
         }
@@ -239,7 +279,8 @@ impl Bsdf {
             | Bsdf::ThinDielectric { .. }
             | Bsdf::RoughDielectric(_)
             | Bsdf::Principled(_)
-            | Bsdf::PrincipledThin(_) => Vec3A::ZERO,
+            | Bsdf::PrincipledThin(_)
+            | Bsdf::PPlastic(_) => Vec3A::ZERO,
             Bsdf::RoughConductor {
                 ggx,
                 eta,
@@ -285,6 +326,9 @@ impl Bsdf {
             Bsdf::PrincipledThin(p) => return p.pdf(wo, wi),
             _ => {}
         }
+        if let Bsdf::PPlastic(p) = self {
+            return p.pdf(wo, wi);
+        }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
@@ -295,7 +339,8 @@ impl Bsdf {
             | Bsdf::ThinDielectric { .. }
             | Bsdf::RoughDielectric(_)
             | Bsdf::Principled(_)
-            | Bsdf::PrincipledThin(_) => 0.0,
+            | Bsdf::PrincipledThin(_)
+            | Bsdf::PPlastic(_) => 0.0,
             Bsdf::RoughConductor { ggx, .. } => {
                 let m = (wo + wi).normalize();
                 ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12))
@@ -337,6 +382,7 @@ impl Bsdf {
             Bsdf::RoughDielectric(d) => return d.sample(wo, u_lobe, u),
             Bsdf::Principled(p) => return p.sample(wo, u_lobe, u),
             Bsdf::PrincipledThin(p) => return p.sample(wo, u_lobe, u),
+            Bsdf::PPlastic(p) => return p.sample(wo, u_lobe, u),
             Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample(wo, u)),
             Bsdf::Plastic {
                 ggx,

@@ -1,9 +1,11 @@
 //! Tests of every BSDF: sampling against evaluation (a χ² test over a binned sphere, as
 //! Mitsuba's test suite does, and the sampled estimate of the albedo against a brute-force
-//! integral), the white-furnace energy bound, reciprocity, and R + T = 1 for smooth glass.
+//! integral), the white-furnace energy bound, reciprocity, and R + T = 1 for smooth glass;
+//! anisotropic roughness and `pplastic` among them.
 use super::*;
 use crate::dielectric::RoughDielectric;
 use crate::microfacet::internal_diffuse_reflectance;
+use crate::pplastic::PPlastic;
 use crate::sampler::{SampleStream, hash_key};
 
 fn rough_glass(alpha: f32, d: Distribution, eta: f32) -> Bsdf {
@@ -43,8 +45,105 @@ fn smooth_lobed() -> Vec<Bsdf> {
         v.push(rough_glass(0.3, d, 1.5));
         v.push(rough_glass(0.3, d, 1.0 / 1.5));
         v.push(rough_glass(0.08, d, 1.33));
+        // Anisotropic roughness, both ways round.
+        v.push(Bsdf::conductor_uv(
+            0.05,
+            0.4,
+            d,
+            Vec3A::new(0.2, 0.9, 1.1),
+            Vec3A::new(3.9, 2.4, 2.1),
+            Vec3A::ONE,
+        ));
+        v.push(Bsdf::conductor_uv(
+            0.5,
+            0.1,
+            d,
+            Vec3A::splat(1.5),
+            Vec3A::splat(3.0),
+            Vec3A::ONE,
+        ));
+        for eta in [1.5, 1.0 / 1.5] {
+            v.push(Bsdf::RoughDielectric(RoughDielectric {
+                md: Microfacet::anisotropic(0.1, 0.35, d),
+                eta,
+                r: Vec3A::ONE,
+                t: Vec3A::ONE,
+            }));
+        }
+        // pplastic, with the sampling weights of a dark base (mostly specular) and of a
+        // bright one, isotropic and not.
+        for (md, diffuse) in [
+            (Microfacet::new(0.06, d), Vec3A::new(0.05, 0.03, 0.1)),
+            (Microfacet::new(0.3, d), Vec3A::new(0.9, 0.8, 0.7)),
+            (Microfacet::anisotropic(0.3, 0.08, d), Vec3A::splat(0.5)),
+        ] {
+            let p = PPlastic::spec_prob((diffuse.x + diffuse.y + diffuse.z) / 3.0, 1.0);
+            v.push(Bsdf::PPlastic(PPlastic::new(
+                md,
+                diffuse,
+                Vec3A::ONE,
+                1.49,
+                p,
+            )));
+        }
     }
     v
+}
+
+/// pplastic without a specular lobe is the Fresnel-attenuated Lambertian alone, sampled by
+/// the cosine only (Mitsuba's weight s / (d + s) = 0).
+#[test]
+fn pplastic_without_specular_is_its_attenuated_base() {
+    let d = Vec3A::new(0.05, 0.03, 0.1);
+    let md = Microfacet::new(0.06, Distribution::Beckmann);
+    let p = Bsdf::PPlastic(PPlastic::new(
+        md,
+        d,
+        Vec3A::ZERO,
+        1.49,
+        PPlastic::spec_prob(0.06, 0.0),
+    ));
+    let (wo, wi) = (wo(), Vec3A::new(-0.3, 0.2, 0.93).normalize());
+    let f = p.eval(wo, wi);
+    let t = (1.0 - fresnel_dielectric(wo.z, 1.49)) * (1.0 - fresnel_dielectric(wi.z, 1.49));
+    assert!((f - d * t * FRAC_1_PI).abs().max_element() < 1e-7, "{f}");
+    assert!((p.pdf(wo, wi) - wi.z * FRAC_1_PI).abs() < 1e-6);
+}
+
+/// Anisotropic roughness is laid out along the frame's axes: turning both directions by 90°
+/// about the normal is the same as swapping alpha_u and alpha_v, and equal roughness is
+/// the isotropic BSDF.
+#[test]
+fn anisotropy_follows_the_frame_axes() {
+    let rot = |w: Vec3A| Vec3A::new(-w.y, w.x, w.z);
+    let key = hash_key(&[5]);
+    for d in [Distribution::Ggx, Distribution::Beckmann] {
+        let conductor = |au, av| {
+            Bsdf::conductor_uv(au, av, d, Vec3A::splat(0.2), Vec3A::splat(3.0), Vec3A::ONE)
+        };
+        let (a, b) = (conductor(0.05, 0.4), conductor(0.4, 0.05));
+        let (iso, iso_uv) = (
+            conductor(0.2, 0.2),
+            Bsdf::conductor(0.2, d, Vec3A::splat(0.2), Vec3A::splat(3.0), Vec3A::ONE),
+        );
+        let mut differs = false;
+        for i in 0..500 {
+            let mut s = SampleStream::new(key, i);
+            let wo = cosine_hemisphere(s.next_2d());
+            let wi = cosine_hemisphere(s.next_2d());
+            let (fa, fb) = (a.eval(wo, wi), b.eval(rot(wo), rot(wi)));
+            assert!(
+                (fa - fb).abs().max_element() <= 1e-3 * fa.max_element().max(1.0),
+                "{d:?}: {fa} vs {fb}"
+            );
+            let (pa, pb) = (a.pdf(wo, wi), b.pdf(rot(wo), rot(wi)));
+            assert!((pa - pb).abs() <= 1e-3 * pa.max(1.0), "{d:?}: {pa} vs {pb}");
+            differs |= (a.eval(wo, wi) - b.eval(wo, wi)).abs().max_element() > 1e-2;
+            let (f0, f1) = (iso.eval(wo, wi), iso_uv.eval(wo, wi));
+            assert!((f0 - f1).abs().max_element() <= 1e-4 * f0.max_element().max(1.0));
+        }
+        assert!(differs, "{d:?}: alpha_u and alpha_v must matter");
+    }
 }
 
 fn wo() -> Vec3A {

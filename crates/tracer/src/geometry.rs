@@ -303,6 +303,7 @@ impl Geometry {
                 si.ns = si.ng;
             }
             si.dpdu = inst.to_world.transform_vector3a(si.dpdu);
+            si.dpdv = inst.to_world.transform_vector3a(si.dpdv);
         }
         si.t = hit.t;
         si.p = origin + dir * hit.t;

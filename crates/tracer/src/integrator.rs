@@ -82,6 +82,22 @@ impl Frame {
             n,
         }
     }
+    /// The frame around unit normal `n` whose +x is `tangent` made perpendicular to `n`
+    /// (Mitsuba's shading frame, which anisotropic BSDFs need); [`Frame::new`]'s where the
+    /// tangent is parallel to `n` or zero.
+    #[inline]
+    pub fn with_tangent(n: Vec3A, tangent: Vec3A) -> Frame {
+        let s = (tangent - n * n.dot(tangent)).normalize_or_zero();
+        if s == Vec3A::ZERO || !s.is_finite() {
+            return Frame::new(n);
+        }
+        Frame {
+            s,
+            t: n.cross(s),
+            n,
+        }
+    }
+
     #[inline]
     pub fn to_local(self, v: Vec3A) -> Vec3A {
         Vec3A::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
@@ -174,7 +190,7 @@ pub fn trace(
             break;
         }
         let u = VertexSamples::draw(s);
-        let v = Vertex::new(scene, &si, -path.d);
+        let v = Vertex::new(scene, &si, -path.d, &u);
         path.sample_light(scene, &mut scratch, &v, &u);
         if !path.scatter(&v, &u) || !path.roulette(settings.rr_depth, u.rr) {
             break;

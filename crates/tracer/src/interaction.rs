@@ -16,6 +16,8 @@ pub struct SurfaceInteraction {
     pub uv: Vec2,
     /// ∂p/∂u: from the UVs, else the edge v1 − v0.
     pub dpdu: Vec3A,
+    /// ∂p/∂v: from the UVs, else the edge v2 − v0 (bump maps need both).
+    pub dpdv: Vec3A,
     /// Interpolated vertex colour (zero without vertex colours).
     pub color: Vec3A,
     pub instance: u32,
@@ -77,12 +79,12 @@ impl Attributes {
             }
             _ => ng,
         };
-        let (uv, dpdu) = match idx {
+        let (uv, [dpdu, dpdv]) = match idx {
             Some(t) if !self.uvs.is_empty() => {
                 let uv = t.map(|k| self.uvs[k as usize]);
-                (uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2], dpdu_of(v, uv))
+                (uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2], dp_duv(v, uv))
             }
-            _ => (b, v[1] - v[0]),
+            _ => (b, [v[1] - v[0], v[2] - v[0]]),
         };
         let color = match idx {
             Some(t) if !self.colors.is_empty() => {
@@ -98,6 +100,7 @@ impl Attributes {
             ns,
             uv,
             dpdu,
+            dpdv,
             color,
             instance: 0,
             prim,
@@ -107,16 +110,19 @@ impl Attributes {
     }
 }
 
-/// ∂p/∂u of the triangle `v` with texture coordinates `uv`; a degenerate parameterisation
-/// falls back to the edge v1 − v0.
-fn dpdu_of(v: [Vec3A; 3], uv: [Vec2; 3]) -> Vec3A {
+/// ∂p/∂u and ∂p/∂v of the triangle `v` with texture coordinates `uv`; a degenerate
+/// parameterisation falls back to the edges v1 − v0 and v2 − v0.
+fn dp_duv(v: [Vec3A; 3], uv: [Vec2; 3]) -> [Vec3A; 2] {
     let (d02, d12) = (uv[0] - uv[2], uv[1] - uv[2]);
     let det = d02.x * d12.y - d02.y * d12.x;
     if det.abs() < 1e-12 {
-        return v[1] - v[0];
+        return [v[1] - v[0], v[2] - v[0]];
     }
     let (p02, p12) = (v[0] - v[2], v[1] - v[2]);
-    (p02 * d12.y - p12 * d02.y) / det
+    [
+        (p02 * d12.y - p12 * d02.y) / det,
+        (p12 * d02.x - p02 * d12.x) / det,
+    ]
 }
 
 #[cfg(test)]
@@ -124,7 +130,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn dpdu_follows_the_uv_parameterisation() {
+    fn dp_duv_follows_the_uv_parameterisation() {
         // u runs along 2·x, v along z: ∂p/∂u = (0.5, 0, 0).
         let v = [
             Vec3A::ZERO,
@@ -132,8 +138,10 @@ mod tests {
             Vec3A::new(0.0, 0.0, 1.0),
         ];
         let uv = [Vec2::ZERO, Vec2::new(2.0, 0.0), Vec2::new(0.0, 1.0)];
-        assert!((dpdu_of(v, uv) - Vec3A::new(0.5, 0.0, 0.0)).length() < 1e-6);
-        // A collapsed parameterisation falls back to the first edge.
-        assert_eq!(dpdu_of(v, [Vec2::ZERO; 3]), v[1] - v[0]);
+        let [du, dv] = dp_duv(v, uv);
+        assert!((du - Vec3A::new(0.5, 0.0, 0.0)).length() < 1e-6);
+        assert!((dv - Vec3A::new(0.0, 0.0, 1.0)).length() < 1e-6);
+        // A collapsed parameterisation falls back to the edges.
+        assert_eq!(dp_duv(v, [Vec2::ZERO; 3]), [v[1] - v[0], v[2] - v[0]]);
     }
 }

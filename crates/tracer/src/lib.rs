@@ -11,6 +11,7 @@
 
 mod accel;
 mod bsdf;
+mod bump;
 mod bvh_bench;
 mod dielectric;
 mod distribution2d;
@@ -26,6 +27,7 @@ mod lights;
 mod material;
 mod microfacet;
 mod path_state;
+mod pplastic;
 mod principled;
 mod principled_lobes;
 mod principled_thin;

@@ -4,85 +4,176 @@
 //!
 //! The scene's wrappers are flattened once per material: a one-sided BSDF becomes a flag (its
 //! back side is black), and masks become the list of opacities the hit's opacity is the
-//! product of (a mask in a mask passes light where either does).
+//! product of (a mask in a mask passes light where either does); normal and bump maps become
+//! the hit's shading-normal rule. A blend becomes a node whose two children (each flattened,
+//! with the wrappers around the blend pushed down into them) are chosen per hit with
+//! probabilities 1 − weight and weight ([`Materials::select`]): the vertex then scatters with
+//! that child alone, an unbiased estimate of the blend (Mitsuba evaluates both children for
+//! light samples instead; the images converge to the same, with different noise).
 use crate::bsdf::Bsdf;
+use crate::bump::{Terminator, bumped_normal, height_gradient};
 use crate::dielectric::RoughDielectric;
 use crate::interaction::SurfaceInteraction;
 use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
+use crate::pplastic::PPlastic;
 use crate::principled::Principled;
 use crate::principled_thin::PrincipledThin;
 use crate::texture;
-use eyeadapt_scene::{Bsdf as SceneBsdf, Material, Param, Rgb, Scene, Texture, TextureId};
+use eyeadapt_scene::{
+    Bsdf as SceneBsdf, Distribution, Material, Param, Rgb, Scene, Texture, TextureId,
+};
 use glam::Vec3A;
 
+#[derive(Clone)]
 struct Entry {
-    /// The innermost BSDF (no `OneSided` or `Mask` left).
+    /// The innermost BSDF (no wrapper left); unused for a blend.
     bsdf: SceneBsdf,
     emission: Vec3A,
     /// Internal diffuse reflectance of a plastic's coating (0 for other BSDFs).
     fdr: f32,
+    /// A `pplastic`'s probability of sampling its specular lobe.
+    spec_prob: f32,
     /// Black seen from the back of the geometric normal.
     one_sided: bool,
     /// Masks' opacities (empty: opaque).
     opacity: Vec<Param<f32>>,
     /// A tangent-space normal map replacing the shading normal (the innermost one counts).
     normal_map: Option<TextureId>,
+    /// A height field and its scale tilting the shading normal (applied after a normal map).
+    bump: Option<(TextureId, f32)>,
+    /// A blend: its weight and its two children in [`Materials::nodes`].
+    blend: Option<(Param<f32>, [u32; 2])>,
 }
 
+/// The flattened material a hit scatters with (a blend's chosen child).
+#[derive(Clone, Copy)]
+pub struct Leaf<'m>(&'m Entry);
+
 impl Entry {
-    fn new(m: &Material) -> Entry {
-        let mut bsdf = &m.bsdf;
-        let mut one_sided = false;
-        let mut opacity = Vec::new();
-        let mut normal_map = None;
+    fn new(m: &Material, textures: &[Texture], nodes: &mut Vec<Entry>) -> Entry {
+        let root = Entry {
+            bsdf: SceneBsdf::Null,
+            emission: m.emission.into(),
+            fdr: 0.0,
+            spec_prob: 0.0,
+            one_sided: false,
+            opacity: Vec::new(),
+            normal_map: None,
+            bump: None,
+            blend: None,
+        };
+        root.flatten(&m.bsdf, textures, nodes)
+    }
+
+    /// `self` (the wrappers seen so far) with `bsdf`'s wrappers added, down to its leaf or
+    /// blend.
+    fn flatten(mut self, bsdf: &SceneBsdf, textures: &[Texture], nodes: &mut Vec<Entry>) -> Entry {
+        let mut bsdf = bsdf;
         loop {
             match bsdf {
                 SceneBsdf::OneSided(b) => {
-                    one_sided = true;
+                    self.one_sided = true;
                     bsdf = b;
                 }
-                SceneBsdf::Mask {
-                    opacity: o,
-                    bsdf: b,
-                } => {
-                    opacity.push(*o);
+                SceneBsdf::Mask { opacity, bsdf: b } => {
+                    self.opacity.push(*opacity);
                     bsdf = b;
                 }
                 SceneBsdf::NormalMap { normals, bsdf: b } => {
-                    normal_map = Some(*normals);
+                    self.normal_map = Some(*normals);
                     bsdf = b;
+                }
+                SceneBsdf::BumpMap {
+                    height,
+                    scale,
+                    bsdf: b,
+                } => {
+                    self.bump = Some((*height, *scale));
+                    bsdf = b;
+                }
+                SceneBsdf::Blend { weight, bsdfs } => {
+                    let mut children = [0u32; 2];
+                    for (c, b) in children.iter_mut().zip(bsdfs.iter()) {
+                        let e = self.clone().flatten(b, textures, nodes);
+                        nodes.push(e);
+                        *c = nodes.len() as u32 - 1;
+                    }
+                    self.blend = Some((*weight, children));
+                    return self;
+                }
+                SceneBsdf::Null => {
+                    // No surface: light always passes (the BSDF is never used).
+                    self.opacity.push(Param::Const(0.0));
+                    self.bsdf = SceneBsdf::Diffuse {
+                        reflectance: Param::Const(Rgb::ZERO),
+                    };
+                    return self;
                 }
                 _ => break,
             }
         }
-        Entry {
-            bsdf: bsdf.clone(),
-            emission: m.emission.into(),
-            fdr: match bsdf {
-                SceneBsdf::Plastic { ior, .. } => internal_diffuse_reflectance(*ior),
-                _ => 0.0,
-            },
-            one_sided,
-            opacity,
-            normal_map,
+        self.fdr = match bsdf {
+            SceneBsdf::Plastic { ior, .. } => internal_diffuse_reflectance(*ior),
+            _ => 0.0,
+        };
+        if let SceneBsdf::PPlastic {
+            diffuse_reflectance,
+            specular_reflectance,
+            ..
+        } = bsdf
+        {
+            let d = texture::mean(*diffuse_reflectance, textures);
+            let s = texture::mean(*specular_reflectance, textures);
+            self.spec_prob = PPlastic::spec_prob(d, s);
         }
+        self.bsdf = bsdf.clone();
+        self
     }
 }
 
 /// The scene's materials, then the error material, and the textures they read.
 pub struct Materials {
     entries: Vec<Entry>,
+    /// Blends' children.
+    nodes: Vec<Entry>,
     textures: Vec<Texture>,
 }
 
 impl Materials {
     pub fn new(scene: &Scene) -> Materials {
-        let mut entries: Vec<Entry> = scene.materials.iter().map(Entry::new).collect();
-        entries.push(Entry::new(&Material::error()));
+        let mut nodes = Vec::new();
+        let mut entries: Vec<Entry> = scene
+            .materials
+            .iter()
+            .map(|m| Entry::new(m, &scene.textures, &mut nodes))
+            .collect();
+        entries.push(Entry::new(&Material::error(), &scene.textures, &mut nodes));
         Materials {
             entries,
+            nodes,
             textures: scene.textures.clone(),
         }
+    }
+
+    /// The flattened material `si` scatters with, and the lobe-choice number `u_lobe`
+    /// still uniform for it: through each blend, child 1 with probability `weight` (clamped
+    /// to [0, 1]), `u_lobe` rescaled to the chosen interval. Without blends, the material
+    /// itself and `u_lobe` unchanged.
+    #[inline]
+    pub fn select(&self, si: &SurfaceInteraction, mut u_lobe: f32) -> (Leaf<'_>, f32) {
+        let mut e = &self.entries[si.material as usize];
+        while let Some((weight, [a, b])) = e.blend {
+            let w = self.number(weight, si).clamp(0.0, 1.0);
+            let child = if u_lobe < w {
+                u_lobe /= w;
+                b
+            } else {
+                u_lobe = ((u_lobe - w) / (1.0 - w)).min(1.0 - f32::EPSILON / 2.0);
+                a
+            };
+            e = &self.nodes[child as usize];
+        }
+        (Leaf(e), u_lobe)
     }
 
     /// Index of the error material (for instances without one).
@@ -113,11 +204,30 @@ impl Materials {
         }
     }
 
-    /// The shading normal at `si`: the mesh's, or its material's normal map's, 2·rgb − 1 in
-    /// the frame of the mesh's shading normal and ∂p/∂u (as Mitsuba's `normalmap`).
+    /// The shading normal of `leaf` at `si` seen from `wo`: the mesh's, its normal map's or
+    /// its bump map's (`bump.rs`, with the bump's shadowing term).
     #[inline]
-    pub fn shading_normal(&self, si: &SurfaceInteraction) -> Vec3A {
-        let Some(t) = self.entries[si.material as usize].normal_map else {
+    pub fn shading_normal(
+        &self,
+        leaf: Leaf<'_>,
+        si: &SurfaceInteraction,
+        wo: Vec3A,
+    ) -> (Vec3A, Option<Terminator>) {
+        let n = self.normal_mapped(leaf, si);
+        let Some((t, scale)) = leaf.0.bump else {
+            return (n, None);
+        };
+        let g = height_gradient(&self.textures[t.0 as usize], si) * scale;
+        let si_n = SurfaceInteraction { ns: n, ..*si };
+        let m = bumped_normal(&si_n, g, wo);
+        (m, Some(Terminator::new(n, m)))
+    }
+
+    /// The mesh's shading normal, or the normal map's, 2·rgb − 1 in the frame of the mesh's
+    /// shading normal and ∂p/∂u (as Mitsuba's `normalmap`).
+    #[inline]
+    fn normal_mapped(&self, leaf: Leaf<'_>, si: &SurfaceInteraction) -> Vec3A {
+        let Some(t) = leaf.0.normal_map else {
             return si.ns;
         };
         let local = texture::eval(&self.textures[t.0 as usize], si) * 2.0 - Vec3A::ONE;
@@ -130,21 +240,40 @@ impl Materials {
         if m == Vec3A::ZERO { n } else { m }
     }
 
-    /// The probability that a ray passes straight through `si` (its masks' opacity).
+    /// The probability that a ray passes straight through `leaf` at `si` (its masks'
+    /// opacity).
     #[inline]
-    pub fn opacity(&self, si: &SurfaceInteraction) -> f32 {
-        let e = &self.entries[si.material as usize];
-        e.opacity
+    pub fn opacity(&self, leaf: Leaf<'_>, si: &SurfaceInteraction) -> f32 {
+        leaf.0
+            .opacity
             .iter()
             .map(|&p| self.number(p, si).clamp(0.0, 1.0))
             .product()
     }
 
-    /// The BSDF of `si`'s material at `si`, seen from the front of the geometric normal when
-    /// `front` (a dielectric's exterior; the back of a one-sided BSDF is black).
+    /// A microfacet distribution with roughness `alpha` (along ∂p/∂u when `alpha_v` is
+    /// given), each at least `min`.
     #[inline]
-    pub fn bsdf(&self, si: &SurfaceInteraction, front: bool) -> Bsdf {
-        let e = &self.entries[si.material as usize];
+    fn microfacet(
+        &self,
+        alpha: Param<f32>,
+        alpha_v: Option<Param<f32>>,
+        distribution: Distribution,
+        si: &SurfaceInteraction,
+        min: f32,
+    ) -> Microfacet {
+        let a = self.number(alpha, si).max(min);
+        match alpha_v {
+            None => Microfacet::new(a, distribution),
+            Some(v) => Microfacet::anisotropic(a, self.number(v, si).max(min), distribution),
+        }
+    }
+
+    /// The BSDF of `leaf` at `si`, seen from the front of the geometric normal when `front`
+    /// (a dielectric's exterior; the back of a one-sided BSDF is black).
+    #[inline]
+    pub fn bsdf(&self, leaf: Leaf<'_>, si: &SurfaceInteraction, front: bool) -> Bsdf {
+        let e = leaf.0;
         if e.one_sided && !front {
             return Bsdf::diffuse(Vec3A::ZERO);
         }
@@ -152,12 +281,28 @@ impl Materials {
             SceneBsdf::Diffuse { reflectance } => Bsdf::diffuse(self.rgb(reflectance, si)),
             SceneBsdf::Conductor {
                 alpha,
+                alpha_v: None,
                 distribution,
                 eta,
                 k,
                 specular_reflectance,
             } => Bsdf::conductor(
                 self.number(alpha, si),
+                distribution,
+                eta.into(),
+                k.into(),
+                self.rgb(specular_reflectance, si),
+            ),
+            SceneBsdf::Conductor {
+                alpha,
+                alpha_v: Some(alpha_v),
+                distribution,
+                eta,
+                k,
+                specular_reflectance,
+            } => Bsdf::conductor_uv(
+                self.number(alpha, si),
+                self.number(alpha_v, si),
                 distribution,
                 eta.into(),
                 k.into(),
@@ -195,20 +340,18 @@ impl Materials {
             },
             SceneBsdf::RoughDielectric {
                 alpha,
+                alpha_v,
                 distribution,
                 eta,
                 specular_reflectance,
                 specular_transmittance,
-            } => {
+            } => Bsdf::RoughDielectric(RoughDielectric {
                 // Mitsuba clamps a texture's roughness away from 0 the same way.
-                let alpha = self.number(alpha, si).max(1e-4);
-                Bsdf::RoughDielectric(RoughDielectric {
-                    md: Microfacet::new(alpha, distribution),
-                    eta: if front { eta } else { 1.0 / eta },
-                    r: specular_reflectance.into(),
-                    t: specular_transmittance.into(),
-                })
-            }
+                md: self.microfacet(alpha, alpha_v, distribution, si, 1e-4),
+                eta: if front { eta } else { 1.0 / eta },
+                r: specular_reflectance.into(),
+                t: specular_transmittance.into(),
+            }),
             SceneBsdf::Principled(ref p) => Bsdf::Principled(Principled::at(
                 p,
                 front,
@@ -220,10 +363,27 @@ impl Materials {
                 |c| self.rgb(c, si),
                 |x| self.number(x, si),
             )),
-            // Flattened into the entry.
-            SceneBsdf::OneSided(_) | SceneBsdf::Mask { .. } | SceneBsdf::NormalMap { .. } => {
-                unreachable!()
-            }
+            SceneBsdf::PPlastic {
+                diffuse_reflectance,
+                specular_reflectance,
+                alpha,
+                alpha_v,
+                distribution,
+                eta,
+            } => Bsdf::PPlastic(PPlastic::new(
+                self.microfacet(alpha, alpha_v, distribution, si, 1e-4),
+                self.rgb(diffuse_reflectance, si),
+                self.rgb(specular_reflectance, si),
+                eta,
+                e.spec_prob,
+            )),
+            // Flattened into the entry (a null surface's leaf is black and never scatters).
+            SceneBsdf::OneSided(_)
+            | SceneBsdf::Mask { .. }
+            | SceneBsdf::NormalMap { .. }
+            | SceneBsdf::BumpMap { .. }
+            | SceneBsdf::Blend { .. }
+            | SceneBsdf::Null => unreachable!(),
         }
     }
 }

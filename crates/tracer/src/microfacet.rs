@@ -1,6 +1,10 @@
-//! Microfacet distributions (GGX and Beckmann, isotropic), Smith masking, normal sampling
-//! (GGX: visible normals; Beckmann: the full distribution D(m)·cos θm) and Fresnel terms.
-//! Local frame: the shading normal is +z.
+//! Microfacet distributions (GGX and Beckmann, isotropic or anisotropic), Smith masking,
+//! normal sampling (GGX: visible normals; Beckmann: the full distribution D(m)·cos θm) and
+//! Fresnel terms. Local frame: the shading normal is +z, ∂p/∂u along +x (where `alpha_u`
+//! applies; `alpha_v` along +y).
+//!
+//! Isotropic surfaces keep their own, shorter formulas (and bits): the anisotropic ones are
+//! used only where `alpha_u ≠ alpha_v`.
 use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -8,20 +12,36 @@ use std::f32::consts::PI;
 #[derive(Clone, Copy, Debug)]
 pub struct Microfacet {
     pub alpha: f32,
+    /// The roughness along +y; equal to `alpha` for isotropic surfaces.
+    pub alpha_v: f32,
     pub beckmann: bool,
 }
 
 impl Microfacet {
     pub fn new(alpha: f32, distribution: Distribution) -> Microfacet {
+        Microfacet::anisotropic(alpha, alpha, distribution)
+    }
+
+    /// Roughness `alpha_u` along +x and `alpha_v` along +y.
+    pub fn anisotropic(alpha_u: f32, alpha_v: f32, distribution: Distribution) -> Microfacet {
         Microfacet {
-            alpha,
+            alpha: alpha_u,
+            alpha_v,
             beckmann: distribution == Distribution::Beckmann,
         }
+    }
+
+    #[inline]
+    fn isotropic(&self) -> bool {
+        self.alpha == self.alpha_v
     }
 
     pub fn d(&self, m: Vec3A) -> f32 {
         if m.z <= 0.0 {
             return 0.0;
+        }
+        if !self.isotropic() {
+            return self.d_anisotropic(m);
         }
         let a2 = self.alpha * self.alpha;
         let c2 = m.z * m.z;
@@ -39,6 +59,9 @@ impl Microfacet {
     pub fn g1(&self, w: Vec3A, m: Vec3A) -> f32 {
         if w.dot(m) * w.z <= 0.0 {
             return 0.0;
+        }
+        if !self.isotropic() {
+            return self.g1_anisotropic(w);
         }
         let c2 = w.z * w.z;
         if c2 >= 1.0 {
@@ -65,6 +88,9 @@ impl Microfacet {
     /// Samples a microfacet normal for viewing direction `wi` (`wi.z > 0`); its density is
     /// [`Self::pdf`].
     pub fn sample(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
+        if self.beckmann && !self.isotropic() {
+            return self.sample_beckmann_anisotropic(u);
+        }
         if self.beckmann {
             let tan2 = -self.alpha * self.alpha * (1.0 - u[0]).max(1e-12).ln();
             let cos = 1.0 / (1.0 + tan2).sqrt();
@@ -91,8 +117,8 @@ impl Microfacet {
     /// Samples a visible GGX normal seen from `wi` (Heitz 2018, "Sampling the GGX
     /// Distribution of Visible Normals"). `wi.z > 0`.
     fn sample_visible(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
-        let a = self.alpha;
-        let vh = Vec3A::new(a * wi.x, a * wi.y, wi.z).normalize();
+        let (a, b) = (self.alpha, self.alpha_v);
+        let vh = Vec3A::new(a * wi.x, b * wi.y, wi.z).normalize();
         let lensq = vh.x * vh.x + vh.y * vh.y;
         let t1 = if lensq > 0.0 {
             Vec3A::new(-vh.y, vh.x, 0.0) / lensq.sqrt()
@@ -107,7 +133,57 @@ impl Microfacet {
         let s = 0.5 * (1.0 + vh.z);
         p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * p2;
         let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-        Vec3A::new(a * nh.x, a * nh.y, nh.z.max(1e-6)).normalize()
+        Vec3A::new(a * nh.x, b * nh.y, nh.z.max(1e-6)).normalize()
+    }
+
+    /// D(m) of an anisotropic surface (`m.z > 0`).
+    fn d_anisotropic(&self, m: Vec3A) -> f32 {
+        let (au, av) = (self.alpha, self.alpha_v);
+        let (x, y) = (m.x / au, m.y / av);
+        let z2 = m.z * m.z;
+        if self.beckmann {
+            (-(x * x + y * y) / z2).exp() / (PI * au * av * z2 * z2)
+        } else {
+            let t = x * x + y * y + z2;
+            1.0 / (PI * au * av * t * t)
+        }
+    }
+
+    /// Smith G1 of an anisotropic surface: the isotropic one with the roughness projected
+    /// on `w`'s azimuth, α² tan²θ = (αu² x² + αv² y²) / z².
+    fn g1_anisotropic(&self, w: Vec3A) -> f32 {
+        let (x, y) = (self.alpha * w.x, self.alpha_v * w.y);
+        let xy2 = x * x + y * y;
+        if xy2 <= 0.0 {
+            return 1.0;
+        }
+        let a2tan2 = xy2 / (w.z * w.z).max(1e-12);
+        if self.beckmann {
+            let a = 1.0 / a2tan2.sqrt();
+            if a >= 1.6 {
+                return 1.0;
+            }
+            let a2 = a * a;
+            (3.535 * a + 2.181 * a2) / (1.0 + 2.276 * a + 2.577 * a2)
+        } else {
+            2.0 / (1.0 + (1.0 + a2tan2).sqrt())
+        }
+    }
+
+    /// Samples D(m)·cos θm of an anisotropic Beckmann surface: the azimuth with density
+    /// 1/(2π αu αv A(φ)), A(φ) = cos²φ/αu² + sin²φ/αv² (tan φ = αv/αu · tan 2πu₁), then
+    /// tan²θ = −ln(1 − u₀)/A(φ).
+    fn sample_beckmann_anisotropic(&self, u: [f32; 2]) -> Vec3A {
+        let (au, av) = (self.alpha, self.alpha_v);
+        let psi = 2.0 * PI * u[1];
+        let (sp, cp) = (av * psi.sin(), au * psi.cos());
+        let r = (sp * sp + cp * cp).sqrt();
+        let (sin_phi, cos_phi) = (sp / r, cp / r);
+        let a = cos_phi * cos_phi / (au * au) + sin_phi * sin_phi / (av * av);
+        let tan2 = -(1.0 - u[0]).max(1e-12).ln() / a;
+        let cos = 1.0 / (1.0 + tan2).sqrt();
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        Vec3A::new(sin * cos_phi, sin * sin_phi, cos)
     }
 }
 
@@ -195,6 +271,51 @@ mod tests {
                 s += g.d(m) as f64 * ct * 2.0 * std::f64::consts::PI / n as f64;
             }
             assert!((s - 1.0).abs() < 0.02, "alpha {alpha} {d:?}: {s}");
+        }
+    }
+
+    #[test]
+    fn anisotropic_d_integrates_projected_area_to_one() {
+        // ∫ D(m) cos θm dm = 1, on a (cos θ, φ) grid: the peak of the smaller roughness needs
+        // the fine steps near the pole.
+        for d in [Distribution::Ggx, Distribution::Beckmann] {
+            for (au, av) in [(0.1f32, 0.4f32), (0.6, 0.2)] {
+                let g = Microfacet::anisotropic(au, av, d);
+                let (nt, np) = (4000, 256);
+                let mut s = 0.0f64;
+                for i in 0..nt {
+                    // cos θ = 1 − t², t uniform: dense steps at the pole.
+                    let t = (i as f64 + 0.5) / nt as f64;
+                    let ct = 1.0 - t * t;
+                    let st = (1.0 - ct * ct).max(0.0).sqrt();
+                    for j in 0..np {
+                        let phi = (j as f64 + 0.5) / np as f64 * 2.0 * std::f64::consts::PI;
+                        let m =
+                            Vec3A::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
+                        let dw = 2.0 * t / nt as f64 * 2.0 * std::f64::consts::PI / np as f64;
+                        s += g.d(m) as f64 * ct * dw;
+                    }
+                }
+                assert!((s - 1.0).abs() < 0.02, "{au} {av} {d:?}: {s}");
+            }
+        }
+    }
+
+    #[test]
+    fn anisotropic_formulas_meet_the_isotropic_ones_at_equal_roughness() {
+        for d in [Distribution::Ggx, Distribution::Beckmann] {
+            let iso = Microfacet::new(0.3, d);
+            for k in 0..20 {
+                let th = k as f32 / 20.0 * 1.5;
+                let w = Vec3A::new(th.sin() * 0.6, th.sin() * 0.8, th.cos());
+                let (a, b) = (iso.d(w), iso.d_anisotropic(w));
+                assert!(
+                    (a - b).abs() <= 1e-4 * a.max(1.0),
+                    "{d:?} D at {th}: {a} vs {b}"
+                );
+                let (a, b) = (iso.g1(w, Vec3A::Z), iso.g1_anisotropic(w));
+                assert!((a - b).abs() <= 1e-4, "{d:?} G1 at {th}: {a} vs {b}");
+            }
         }
     }
 

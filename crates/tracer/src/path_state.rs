@@ -14,6 +14,7 @@
 //! [`VertexSamples`]. A batched or wavefront executor can therefore run one step over many
 //! paths at a time and get the same result as [`crate::trace`].
 use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bump::Terminator;
 use crate::geometry::RayScratch;
 use crate::integrator::{
     Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic, visible,
@@ -62,6 +63,10 @@ pub struct Vertex {
     /// The probability that the surface scatters (masks); otherwise light passes straight
     /// through, a delta event.
     opacity: f32,
+    /// The lobe-choice number left for `bsdf` (a blend's choice of child rescales it).
+    lobe: f32,
+    /// A bump map's shadowing term (`bump.rs`).
+    terminator: Option<Terminator>,
     /// Ray origins just off the surface on the viewer's side and behind it.
     p_front: Vec3A,
     p_back: Vec3A,
@@ -98,24 +103,42 @@ impl VertexSamples {
 }
 
 impl Vertex {
-    /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there.
+    /// The surface `si` seen along `wo` (towards the viewer), with its BSDF built there (a
+    /// blend's child chosen with `u.lobe`).
     #[inline]
-    pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A) -> Vertex {
+    pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A, u: &VertexSamples) -> Vertex {
+        let (leaf, lobe) = scene.materials.select(si, u.lobe);
         // Shading frame on the viewer's side; the BSDF knows which side that is.
         let front = si.ng.dot(wo) > 0.0;
         let ng = if front { si.ng } else { -si.ng };
-        let ns = scene.materials.shading_normal(si);
+        let (ns, terminator) = scene.materials.shading_normal(leaf, si, wo);
         let ns = if ns.dot(ng) < 0.0 { -ns } else { ns };
-        let frame = Frame::new(ns);
+        let bsdf = scene.materials.bsdf(leaf, si, front);
+        // Anisotropic roughness is laid out along ∂p/∂u (in the plane of the mesh's shading
+        // normal first, as Mitsuba's frame, then of the mapped one).
+        let frame = if bsdf.is_anisotropic() {
+            Frame::with_tangent(ns, si.dpdu - si.ns * si.ns.dot(si.dpdu))
+        } else {
+            Frame::new(ns)
+        };
         Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
-            bsdf: scene.materials.bsdf(si, front).oriented(&frame, si.dpdu),
-            opacity: scene.materials.opacity(si),
+            // Principled lobes turn their own anisotropy to ∂p/∂u (`Bsdf::oriented`).
+            bsdf: bsdf.oriented(&frame, si.dpdu),
+            opacity: scene.materials.opacity(leaf, si),
+            lobe,
+            terminator,
             p_front: offset(si.p, ng),
             p_back: offset(si.p, -ng),
         }
+    }
+
+    /// The bump map's shadowing of light along `wi` (1 without one).
+    #[inline]
+    fn shadowing(&self, wi: Vec3A) -> f32 {
+        self.terminator.map_or(1.0, |t| t.factor(wi))
     }
 
     /// The ray origin for leaving along `wi`, and whether that side is the viewer's.
@@ -236,7 +259,7 @@ impl PathState {
         let wi_l = v.frame.to_local(ls.wi);
         // Shadow rays treat every surface as opaque, as Mitsuba's path integrator does; light
         // through glass or a mask's holes arrives by BSDF sampling.
-        let f_surface = v.bsdf.eval(v.wo_l, wi_l);
+        let f_surface = v.bsdf.eval(v.wo_l, wi_l) * v.shadowing(ls.wi);
         let f = f_surface * v.opacity;
         if f.max_element() <= 0.0 || !visible(scene, scratch, from, ls.wi, ls.dist) {
             return;
@@ -262,7 +285,8 @@ impl PathState {
     /// the path ends (no sample, or one on the wrong side of the geometric surface).
     #[inline]
     pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
-        let bs = if u.mask >= v.opacity {
+        let through = u.mask >= v.opacity;
+        let bs = if through {
             // Through a mask's hole: straight on, unweighted.
             Some(BsdfSample {
                 wi: -v.wo_l,
@@ -272,15 +296,20 @@ impl PathState {
                 delta: true,
             })
         } else {
-            v.bsdf.sample(v.wo_l, u.lobe, u.bsdf).map(|b| BsdfSample {
+            v.bsdf.sample(v.wo_l, v.lobe, u.bsdf).map(|b| BsdfSample {
                 pdf: b.pdf * v.opacity,
                 ..b
             })
         };
-        let Some(bs) = bs else {
+        let Some(mut bs) = bs else {
             return false;
         };
         let wi = v.frame.to_world(bs.wi);
+        if !through && v.terminator.is_some() {
+            let g = v.shadowing(wi);
+            bs.f *= g;
+            bs.weight *= g;
+        }
         let (from, front) = v.origin_towards(wi);
         // The sample's side in the shading frame must be its side of the geometric surface:
         // otherwise it is a shading-normal artefact and no light arrives there.

@@ -2,7 +2,7 @@
 //! modes), checkerboards and interpolated vertex colours.
 use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
-use eyeadapt_scene::{FilterType, Image, Texture, WrapMode};
+use eyeadapt_scene::{FilterType, Image, Param, Rgb, Texture, WrapMode};
 use glam::{Vec2, Vec3A};
 
 /// A texture read as a number: its luminance, as Mitsuba's `eval_1`, which for a
@@ -50,6 +50,24 @@ pub fn eval(tex: &Texture, si: &SurfaceInteraction) -> Vec3A {
     }
 }
 
+/// The mean over the surface of a colour parameter, over its channels too (Mitsuba's
+/// `Texture::mean`: a bitmap's mean texel, a checkerboard's two colours alike; vertex
+/// colours, unknown before the hit, count as 0.5).
+pub fn mean(p: Param<Rgb>, textures: &[Texture]) -> f32 {
+    let avg = |c: Rgb| (c.x + c.y + c.z) / 3.0;
+    match p {
+        Param::Const(c) => avg(c),
+        Param::Texture(t) => match &textures[t.0 as usize] {
+            Texture::Bitmap(b) => {
+                let n = b.image.texels.len().max(1) as f64;
+                (b.image.texels.iter().map(|&c| avg(c) as f64).sum::<f64>() / n) as f32
+            }
+            Texture::Checkerboard { color0, color1, .. } => 0.5 * (avg(*color0) + avg(*color1)),
+            Texture::MeshAttribute { .. } => 0.5,
+        },
+    }
+}
+
 /// Texel index `i` of a row or column of `n` texels under `wrap`.
 #[inline]
 fn wrap_index(i: i64, n: u32, wrap: WrapMode) -> usize {
@@ -87,6 +105,28 @@ pub fn lookup(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) -> Vec3
             top * (1.0 - fy) + bottom * fy
         }
     }
+}
+
+/// The derivatives of [`lookup`] along u and along v (before any `to_uv`): those of the
+/// bilinear interpolation between the four texels around `uv`, zero for nearest lookups (as
+/// Mitsuba's `eval_1_grad`).
+pub fn lookup_grad(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) -> [Vec3A; 2] {
+    if img.texels.is_empty() || !uv.is_finite() || filter == FilterType::Nearest {
+        return [Vec3A::ZERO; 2];
+    }
+    let (w, h) = (img.width, img.height);
+    let at = |x: i64, y: i64| -> Vec3A {
+        img.texels[wrap_index(y, h, wrap) * w as usize + wrap_index(x, w, wrap)].into()
+    };
+    let (x, y) = (uv.x as f64 * w as f64 - 0.5, uv.y as f64 * h as f64 - 0.5);
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let (f00, f10) = (at(x0, y0), at(x0 + 1, y0));
+    let (f01, f11) = (at(x0, y0 + 1), at(x0 + 1, y0 + 1));
+    let dx = (f10 - f00) * (1.0 - fy) + (f11 - f01) * fy;
+    let dy = (f01 - f00) * (1.0 - fx) + (f11 - f10) * fx;
+    [dx * w as f32, dy * h as f32]
 }
 
 #[cfg(test)]
@@ -142,6 +182,34 @@ mod tests {
         assert!(close(b(0.0, 0.25, WrapMode::Repeat), [0.5, 0.5, 0.0]));
         // Mirror reflects at the border: the texel left of column 0 is column 0 itself.
         assert!(close(b(0.0, 0.25, WrapMode::Mirror), [1.0, 0.0, 0.0]));
+    }
+
+    #[test]
+    fn bilinear_gradient_matches_finite_differences() {
+        let img = image();
+        let (f, w) = (FilterType::Bilinear, WrapMode::Repeat);
+        for uv in [
+            Vec2::new(0.4, 0.6),
+            Vec2::new(0.1, 0.3),
+            Vec2::new(0.9, 0.95),
+        ] {
+            let [du, dv] = lookup_grad(&img, uv, f, w);
+            let h = 1e-3;
+            let fd =
+                |d: Vec2| (lookup(&img, uv + d, f, w) - lookup(&img, uv - d, f, w)) / (2.0 * h);
+            assert!(
+                (du - fd(Vec2::new(h, 0.0))).abs().max_element() < 1e-2,
+                "{uv}: {du}"
+            );
+            assert!(
+                (dv - fd(Vec2::new(0.0, h))).abs().max_element() < 1e-2,
+                "{uv}: {dv}"
+            );
+        }
+        assert_eq!(
+            lookup_grad(&img, Vec2::splat(0.3), FilterType::Nearest, w),
+            [Vec3A::ZERO; 2]
+        );
     }
 
     #[test]

@@ -76,6 +76,7 @@ fn glass_in_a_uniform_environment_shows_the_environment() {
         &mut s,
         Bsdf::RoughDielectric {
             alpha: Param::Const(0.3),
+            alpha_v: None,
             distribution: Distribution::Beckmann,
             eta: 1.5,
             specular_reflectance: Rgb::ONE,

@@ -179,6 +179,7 @@ fn surface(cx: &mut Ctx, m: &gltf::Material) -> Result<Bsdf, Diagnostic> {
     if metallic >= 0.5 {
         return Ok(Bsdf::Conductor {
             alpha,
+            alpha_v: None,
             distribution: Distribution::Ggx,
             eta: Rgb::ZERO,
             k: Rgb::ONE,
@@ -253,6 +254,7 @@ fn glass(
             }
             Bsdf::RoughDielectric {
                 alpha,
+                alpha_v: None,
                 distribution: Distribution::Ggx,
                 eta: ior,
                 specular_reflectance: Rgb::ONE,

@@ -155,6 +155,7 @@ impl Ctx<'_> {
         );
         Bsdf::Conductor {
             alpha,
+            alpha_v: None,
             distribution: Distribution::Ggx,
             eta,
             k,
@@ -231,6 +232,7 @@ impl Ctx<'_> {
         }
         Bsdf::RoughDielectric {
             alpha,
+            alpha_v: None,
             distribution: Distribution::Ggx,
             eta,
             specular_reflectance: r,

@@ -1,14 +1,17 @@
 //! BSDF plugins: diffuse, conductor, roughconductor, plastic, roughplastic, twosided, mask
-//! (the dielectrics are in `dielectric.rs`, the principled BSDFs in `principled.rs`).
+//! (the dielectrics are in `dielectric.rs`, the principled BSDFs in `principled.rs`;
+//! blendbsdf, bumpmap and null in `blend.rs`; pplastic and anisotropic roughness in
+//! `rough.rs`).
 //!
 //! Mitsuba's reflecting BSDFs are one-sided: their back sides are black unless a `twosided`
 //! wraps them. They are built as [`Bsdf::OneSided`], and `twosided` unwraps them again.
 use super::Builder;
+use super::rough::Roughness;
 use crate::mitsuba::presets::CONDUCTOR_PRESETS;
 use crate::mitsuba::xml::{ChildKind, Obj};
 use crate::{Bsdf, Distribution, Param, Rgb};
 
-const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, thindielectric, roughdielectric, principled, principledthin, mask, normalmap and twosided";
+const BSDFS: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, pplastic, dielectric, thindielectric, roughdielectric, principled, principledthin, mask, normalmap, bumpmap, blendbsdf, null and twosided";
 /// A BSDF as built from XML, before it becomes a material.
 #[derive(Clone, Debug)]
 pub(crate) struct BuiltBsdf {
@@ -66,6 +69,10 @@ impl<'t> Builder<'t> {
             "twosided" => return self.twosided(o),
             "mask" => return self.mask(o, name),
             "normalmap" => return self.normalmap(o, name),
+            "bumpmap" => return self.bumpmap(o, name),
+            "blendbsdf" => return self.blendbsdf(o, name),
+            "null" => return self.null(o, name),
+            "pplastic" => one_sided(self.pplastic(o)),
             "diffuse" => {
                 let reflectance = self.reflectance(o, "reflectance");
                 one_sided(Bsdf::Diffuse { reflectance })
@@ -233,6 +240,11 @@ impl<'t> Builder<'t> {
             }
             (false, false) => default,
         };
+        (alpha as f32, self.distribution(o))
+    }
+
+    /// `distribution` (Mitsuba's default: Beckmann) and `sample_visible` of rough plugins.
+    pub(super) fn distribution(&mut self, o: &'t Obj) -> Distribution {
         let distribution = match self.string(o, "distribution") {
             Some(("ggx", _)) => Distribution::Ggx,
             Some(("beckmann", _)) | None => Distribution::Beckmann,
@@ -250,11 +262,15 @@ impl<'t> Builder<'t> {
         // Accepted: eyeadapt samples GGX by its visible normals and Beckmann by D(m)·cos θm
         // (both unbiased; only the noise differs).
         self.boolean(o, "sample_visible");
-        (alpha as f32, distribution)
+        distribution
     }
 
     pub(super) fn conductor(&mut self, o: &'t Obj) -> Bsdf {
-        let (alpha, distribution) = self.alpha(o, "roughconductor");
+        let Roughness {
+            alpha,
+            alpha_v,
+            distribution,
+        } = self.roughness_uv(o, "roughconductor");
         let material = self.string(o, "material");
         let has_eta = self.prop(o, "eta").is_some() || self.prop(o, "k").is_some();
         let (eta, k) = match material {
@@ -297,6 +313,7 @@ impl<'t> Builder<'t> {
             .unwrap_or(Param::Const(Rgb::ONE));
         Bsdf::Conductor {
             alpha,
+            alpha_v,
             distribution,
             eta,
             k,
@@ -353,8 +370,8 @@ impl<'t> Builder<'t> {
     }
 }
 
-/// `b` reflecting alike on both sides: the one-sided wrappers removed, also inside masks and
-/// normal maps.
+/// `b` reflecting alike on both sides: the one-sided wrappers removed, also inside masks,
+/// normal and bump maps and blends.
 fn two_sided(b: Bsdf) -> Bsdf {
     match b {
         Bsdf::OneSided(inner) => two_sided(*inner),
@@ -366,6 +383,22 @@ fn two_sided(b: Bsdf) -> Bsdf {
             normals,
             bsdf: Box::new(two_sided(*bsdf)),
         },
+        Bsdf::BumpMap {
+            height,
+            scale,
+            bsdf,
+        } => Bsdf::BumpMap {
+            height,
+            scale,
+            bsdf: Box::new(two_sided(*bsdf)),
+        },
+        Bsdf::Blend { weight, bsdfs } => {
+            let [a, b] = *bsdfs;
+            Bsdf::Blend {
+                weight,
+                bsdfs: Box::new([two_sided(a), two_sided(b)]),
+            }
+        }
         other => other,
     }
 }

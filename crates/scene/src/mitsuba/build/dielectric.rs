@@ -84,7 +84,11 @@ impl<'t> Builder<'t> {
                 specular_transmittance,
             },
             "roughdielectric" => {
-                let (alpha, distribution) = self.alpha(o, "roughdielectric");
+                let super::rough::Roughness {
+                    alpha,
+                    alpha_v,
+                    distribution,
+                } = self.roughness_uv(o, "roughdielectric");
                 if int_ior == ext_ior {
                     self.error(
                         o.at,
@@ -93,6 +97,7 @@ impl<'t> Builder<'t> {
                 }
                 Bsdf::RoughDielectric {
                     alpha,
+                    alpha_v,
                     distribution,
                     eta,
                     specular_reflectance,

@@ -9,12 +9,14 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::{Light, MaterialId, Scene};
 use std::collections::{HashMap, HashSet};
 
+mod blend;
 mod bsdf;
 mod dielectric;
 mod emitter;
 mod integrator;
 mod params;
 mod principled;
+mod rough;
 mod sensor;
 mod shape;
 mod shapegroup;
