@@ -331,6 +331,7 @@ fn convert(
             normals,
             uvs,
             colors,
+            face_colors: Vec::new(),
         });
         out.materials.push(material);
         out.diffuse_maps.push(map);

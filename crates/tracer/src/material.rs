@@ -26,6 +26,8 @@ struct Entry {
     opacity: Vec<Param<f32>>,
     /// A tangent-space normal map replacing the shading normal (the innermost one counts).
     normal_map: Option<TextureId>,
+    /// A texture that multiplies `emission` (a textured area emitter's radiance).
+    emission_texture: Option<TextureId>,
 }
 
 impl Entry {
@@ -64,6 +66,7 @@ impl Entry {
             one_sided,
             opacity,
             normal_map,
+            emission_texture: None,
         }
     }
 }
@@ -77,6 +80,9 @@ pub struct Materials {
 impl Materials {
     pub fn new(scene: &Scene) -> Materials {
         let mut entries: Vec<Entry> = scene.materials.iter().map(Entry::new).collect();
+        for &(m, t) in &scene.emission_textures {
+            entries[m.0 as usize].emission_texture = Some(t);
+        }
         entries.push(Entry::new(&Material::error()));
         Materials {
             entries,
@@ -89,9 +95,26 @@ impl Materials {
         self.entries.len() as u32 - 1
     }
 
+    /// The emitted radiance of a material, or of a textured one its scale.
     #[inline]
     pub fn emission(&self, material: u32) -> Vec3A {
         self.entries[material as usize].emission
+    }
+
+    /// The texture multiplying material `material`'s emission, as (texture index, its mean).
+    pub fn emission_texture(&self, material: u32) -> Option<(u32, Vec3A)> {
+        let t = self.entries[material as usize].emission_texture?;
+        Some((t.0, texture::mean(&self.textures[t.0 as usize])))
+    }
+
+    /// The radiance emitted at `si` (front side; the caller checks the side).
+    #[inline]
+    pub fn emission_at(&self, si: &SurfaceInteraction) -> Vec3A {
+        let e = &self.entries[si.material as usize];
+        match e.emission_texture {
+            None => e.emission,
+            Some(t) => e.emission * texture::eval(&self.textures[t.0 as usize], si),
+        }
     }
 
     #[inline]

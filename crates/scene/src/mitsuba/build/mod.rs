@@ -9,6 +9,7 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::{Light, MaterialId, Scene};
 use std::collections::{HashMap, HashSet};
 
+mod beam;
 mod bsdf;
 mod dielectric;
 mod emitter;
@@ -151,6 +152,12 @@ impl<'t> Builder<'t> {
                             ..
                         } => position.is_finite() && direction.is_finite(),
                         Light::Directional { direction, .. } => direction.is_finite(),
+                        Light::TexturedSpot {
+                            position, frame, ..
+                        }
+                        | Light::Projector {
+                            position, frame, ..
+                        } => position.is_finite() && frame.is_finite(),
                     });
                     self.single_precision(ok, o);
                 }
