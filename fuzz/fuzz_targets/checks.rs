@@ -52,67 +52,7 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
         assert!(c.forward().is_finite(), "no view direction accepted: {c:?}");
     }
     for l in &scene.lights {
-        let ok = match l {
-            Light::Point {
-                position,
-                intensity,
-            } => position.is_finite() && check_colour(*intensity).is_ok(),
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cone_deg,
-                falloff_deg,
-            } => {
-                position.is_finite()
-                    && direction.is_finite()
-                    && check_colour(*intensity).is_ok()
-                    && cone_deg.is_finite()
-                    && falloff_deg.is_finite()
-            }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => (direction.length() - 1.0).abs() < 1e-4 && check_colour(*irradiance).is_ok(),
-            Light::TexturedSpot {
-                position,
-                frame,
-                intensity,
-                cone_deg,
-                falloff_deg,
-                texture,
-            } => {
-                position.is_finite()
-                    && frame.is_finite()
-                    && frame.determinant() != 0.0
-                    && check_colour(*intensity).is_ok()
-                    && cone_deg.is_finite()
-                    && falloff_deg.is_finite()
-                    && (texture.0 as usize) < scene.textures.len()
-            }
-            Light::Projector {
-                position,
-                frame,
-                irradiance,
-                scale,
-                tan_half_fov_x,
-                aspect,
-            } => {
-                position.is_finite()
-                    && frame.is_finite()
-                    && frame.determinant() != 0.0
-                    && match irradiance {
-                        Param::Const(c) => check_colour(*c).is_ok(),
-                        Param::Texture(t) => (t.0 as usize) < scene.textures.len(),
-                    }
-                    && scale.is_finite()
-                    && *scale >= 0.0
-                    && tan_half_fov_x.is_finite()
-                    && *tan_half_fov_x > 0.0
-                    && aspect.is_finite()
-                    && *aspect > 0.0
-            }
-        };
+        let ok = light_ok(l, scene.textures.len());
         assert!(ok, "bad light accepted: {l:?}");
     }
     for t in &scene.textures {
@@ -315,6 +255,72 @@ pub fn mitsuba_xml(data: &[u8]) {
                 assert!(d.line <= text.lines().count() + 1, "{d}");
                 let _ = d.to_string();
             }
+        }
+    }
+}
+
+/// A light's values are usable: finite positions and frames, colours, angles and textures
+/// that exist.
+fn light_ok(l: &Light, textures: usize) -> bool {
+    match l {
+        Light::Point {
+            position,
+            intensity,
+        } => position.is_finite() && check_colour(*intensity).is_ok(),
+        Light::Spot {
+            position,
+            direction,
+            intensity,
+            cone_deg,
+            falloff_deg,
+        } => {
+            position.is_finite()
+                && direction.is_finite()
+                && check_colour(*intensity).is_ok()
+                && cone_deg.is_finite()
+                && falloff_deg.is_finite()
+        }
+        Light::Directional {
+            direction,
+            irradiance,
+        } => (direction.length() - 1.0).abs() < 1e-4 && check_colour(*irradiance).is_ok(),
+        Light::TexturedSpot {
+            position,
+            frame,
+            intensity,
+            cone_deg,
+            falloff_deg,
+            texture,
+        } => {
+            position.is_finite()
+                && frame.is_finite()
+                && frame.determinant() != 0.0
+                && check_colour(*intensity).is_ok()
+                && cone_deg.is_finite()
+                && falloff_deg.is_finite()
+                && (texture.0 as usize) < textures
+        }
+        Light::Projector {
+            position,
+            frame,
+            irradiance,
+            scale,
+            tan_half_fov_x,
+            aspect,
+        } => {
+            position.is_finite()
+                && frame.is_finite()
+                && frame.determinant() != 0.0
+                && match irradiance {
+                    Param::Const(c) => check_colour(*c).is_ok(),
+                    Param::Texture(t) => (t.0 as usize) < textures,
+                }
+                && scale.is_finite()
+                && *scale >= 0.0
+                && tan_half_fov_x.is_finite()
+                && *tan_half_fov_x > 0.0
+                && aspect.is_finite()
+                && *aspect > 0.0
         }
     }
 }
