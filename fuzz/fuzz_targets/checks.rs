@@ -52,30 +52,27 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
         assert!(c.forward().is_finite(), "no view direction accepted: {c:?}");
     }
     for l in &scene.lights {
-        let ok = match l {
-            Light::Point {
-                position,
-                intensity,
-            } => position.is_finite() && check_colour(*intensity).is_ok(),
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cone_deg,
-                falloff_deg,
-            } => {
-                position.is_finite()
-                    && direction.is_finite()
-                    && check_colour(*intensity).is_ok()
-                    && cone_deg.is_finite()
-                    && falloff_deg.is_finite()
-            }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => (direction.length() - 1.0).abs() < 1e-4 && check_colour(*irradiance).is_ok(),
-        };
+        let ok = light_ok(l, scene.textures.len());
         assert!(ok, "bad light accepted: {l:?}");
+    }
+    for t in &scene.textures {
+        assert!(texture_ok(t), "bad texture accepted: {t:?}");
+    }
+    for (m, t) in &scene.emission_textures {
+        assert!(
+            (m.0 as usize) < scene.materials.len() && (t.0 as usize) < scene.textures.len(),
+            "dangling emission texture ({m:?}, {t:?})"
+        );
+    }
+    for m in &scene.meshes {
+        assert!(
+            m.face_colors.is_empty() || m.face_colors.len() == m.indices.len(),
+            "face colours that are not one per triangle accepted"
+        );
+        assert!(
+            m.face_colors.iter().all(|c| c.is_finite()),
+            "non-finite face colour accepted"
+        );
     }
     if let Some(e) = scene.environment {
         assert!(check_colour(e).is_ok(), "bad environment accepted: {e:?}");
@@ -259,6 +256,91 @@ pub fn mitsuba_xml(data: &[u8]) {
                 let _ = d.to_string();
             }
         }
+    }
+}
+
+/// A light's values are usable: finite positions and frames, colours, angles and textures
+/// that exist.
+fn light_ok(l: &Light, textures: usize) -> bool {
+    match l {
+        Light::Point {
+            position,
+            intensity,
+        } => position.is_finite() && check_colour(*intensity).is_ok(),
+        Light::Spot {
+            position,
+            direction,
+            intensity,
+            cone_deg,
+            falloff_deg,
+        } => {
+            position.is_finite()
+                && direction.is_finite()
+                && check_colour(*intensity).is_ok()
+                && cone_deg.is_finite()
+                && falloff_deg.is_finite()
+        }
+        Light::Directional {
+            direction,
+            irradiance,
+        } => (direction.length() - 1.0).abs() < 1e-4 && check_colour(*irradiance).is_ok(),
+        Light::TexturedSpot {
+            position,
+            frame,
+            intensity,
+            cone_deg,
+            falloff_deg,
+            texture,
+        } => {
+            position.is_finite()
+                && frame.is_finite()
+                && frame.determinant() != 0.0
+                && check_colour(*intensity).is_ok()
+                && cone_deg.is_finite()
+                && falloff_deg.is_finite()
+                && (texture.0 as usize) < textures
+        }
+        Light::Projector {
+            position,
+            frame,
+            irradiance,
+            scale,
+            tan_half_fov_x,
+            aspect,
+        } => {
+            position.is_finite()
+                && frame.is_finite()
+                && frame.determinant() != 0.0
+                && match irradiance {
+                    Param::Const(c) => check_colour(*c).is_ok(),
+                    Param::Texture(t) => (t.0 as usize) < textures,
+                }
+                && scale.is_finite()
+                && *scale >= 0.0
+                && tan_half_fov_x.is_finite()
+                && *tan_half_fov_x > 0.0
+                && aspect.is_finite()
+                && *aspect > 0.0
+        }
+    }
+}
+
+/// A texture's values are usable: finite colours (constants, checkerboards) and images whose
+/// texels fill their size.
+fn texture_ok(t: &eyeadapt_scene::Texture) -> bool {
+    use eyeadapt_scene::Texture;
+    match t {
+        Texture::Bitmap(b) => {
+            b.image.texels.len() == b.image.width as usize * b.image.height as usize
+                && b.to_uv.is_finite()
+        }
+        Texture::Checkerboard {
+            color0,
+            color1,
+            to_uv,
+        } => check_colour(*color0).is_ok() && check_colour(*color1).is_ok() && to_uv.is_finite(),
+        Texture::MeshAttribute { name } => name == "vertex_color" || name == "face_color",
+        Texture::Constant { value } => check_colour(*value).is_ok(),
     }
 }
 

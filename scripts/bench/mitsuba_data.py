@@ -8,7 +8,9 @@ tests/scenes/participating_media/include/preamble.xml, are included by no scene,
 BSDFs or settings; counting them, as the issue's "114" did, gives two scenes more that can
 never render). It is out of scope when it or a file it
 includes, transitively, uses a plugin of polarisation, participating media, curves, SDF
-grids, hair or measured BSDFs (OUT_OF_SCOPE). Each in-scope scene is rendered once, tiny;
+grids, hair or measured BSDFs (OUT_OF_SCOPE). Each in-scope scene is rendered once, tiny, with
+the $parameters Mitsuba's own harnesses give it (scene_params: `spp`, and for test scenes the
+`integrator` their name ends with), as `-D name=value`;
 "loads" means eyeadapt did not reject it as bad input (exit 2), "renders" that it exited 0.
 """
 import argparse
@@ -90,10 +92,29 @@ def first_error(stderr, root):
     return lines[-1] if lines else ""
 
 
-def run(binary, scene, args, tmp):
+def scene_params(root, scene, spp):
+    """The $parameters Mitsuba's own harnesses give a scene: its test suite
+    (src/render/tests/test_renders.py) loads each tests/scenes file with `spp` and with
+    `integrator` = the file name's last `_` part (test_spot_direct.xml: direct); its
+    documentation renderer (docs/scenes/render_documentation_images.py) loads every docs
+    scene with `spp`. Parameters a scene does not use change nothing."""
+    params = {"spp": str(spp)}
+    rel = os.path.relpath(scene, root)
+    if rel.startswith("tests" + os.sep):
+        params["integrator"] = os.path.splitext(os.path.basename(scene))[0].rsplit("_", 1)[-1]
+    return params
+
+
+def define_args(params):
+    """`-D name=value` for each parameter, as `mitsuba -D` takes them."""
+    return [a for k, v in params.items() for a in ("-D", f"{k}={v}")]
+
+
+def run(binary, scene, args, tmp, root):
     out = os.path.join(tmp, "out")
     cmd = [binary, "render", scene, "--spp", str(args.spp), "--width", str(args.size),
            "--height", str(args.size), "--threads", "1", "--out", out]
+    cmd += define_args(scene_params(root, scene, args.spp))
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
         return p.returncode, p.stderr
@@ -130,7 +151,7 @@ def main():
     print("|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for s, _ in in_scope:
-            code, stderr = run(args.eyeadapt, s, args, tmp)
+            code, stderr = run(args.eyeadapt, s, args, tmp, root)
             loaded = code is not None and code != 2
             rendered = code == 0
             loads += loaded

@@ -21,12 +21,13 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from vs_mitsuba import read_exr_rgb  # noqa: E402
+from mitsuba_data import define_args, scene_params  # noqa: E402
 
 
-def mitsuba_halves(path, size, spp):
+def mitsuba_halves(path, size, spp, params):
     import mitsuba as mi
 
-    scene = mi.load_file(path)
+    scene = mi.load_file(path, **params)
     params = mi.traverse(scene)
     key = next(k for k in params.keys() if k.endswith("film.size"))
     w0, h0 = params[key]
@@ -38,13 +39,13 @@ def mitsuba_halves(path, size, spp):
     return halves, (size, h)
 
 
-def eyeadapt_halves(binary, path, wh, spp, tmp):
+def eyeadapt_halves(binary, path, wh, spp, tmp, params):
     out = []
     for seed in (1, 2):
         d = os.path.join(tmp, f"ea{seed}")
         subprocess.run(
             [binary, "render", path, "--spp", str(spp), "--seed", str(seed), "--width", str(wh[0]),
-             "--height", str(wh[1]), "--out", d],
+             "--height", str(wh[1]), "--out", d] + define_args(params),
             check=True, capture_output=True)
         out.append(read_exr_rgb(os.path.join(d, "raw.exr")).astype(np.float64))
     return out
@@ -80,9 +81,13 @@ def main():
     for rel_path in args.scenes.split(","):
         path = os.path.join(args.dir, rel_path)
         try:
-            m, wh = mitsuba_halves(path, args.size, args.ref_spp)
+            # The parameters Mitsuba's harnesses give the scene (both renderers get the same;
+            # `spp` only matters where the file's sampler reads it: the spp given here rule).
+            m, wh = mitsuba_halves(path, args.size, args.ref_spp,
+                                   scene_params(args.dir, path, args.ref_spp))
             with tempfile.TemporaryDirectory() as tmp:
-                e = eyeadapt_halves(args.eyeadapt, path, wh, args.spp, tmp)
+                e = eyeadapt_halves(args.eyeadapt, path, wh, args.spp, tmp,
+                                    scene_params(args.dir, path, args.spp))
         except Exception as ex:  # one scene's failure is a row, not the end of the table
             print(f"| {rel_path} | | failed: {str(ex).splitlines()[0][:120]} | | | |", flush=True)
             continue

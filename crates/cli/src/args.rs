@@ -204,6 +204,15 @@ fn parse_exposure(s: &str) -> Result<f32, String> {
     }
 }
 
+fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((name, value)) if !name.is_empty() && !name.contains('$') => {
+            Ok((name.to_string(), value.to_string()))
+        }
+        _ => Err(format!("\"{s}\" is not NAME=VALUE")),
+    }
+}
+
 fn parse_max_depth(s: &str) -> Result<i32, String> {
     let v: i32 = s
         .parse()
@@ -219,6 +228,10 @@ fn parse_max_depth(s: &str) -> Result<i32, String> {
 pub struct RenderArgs {
     /// Scene file (.toml, or .xml in Mitsuba 3's format) or builtin:NAME.
     pub scene: String,
+    /// A `$NAME` parameter of a Mitsuba XML scene, as `mitsuba -D NAME=VALUE` gives it
+    /// (repeatable; it wins over the file's `<default>`).
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
     #[command(flatten)]
     pub sampling: SamplingArgs,
     /// Output directory.

@@ -9,7 +9,23 @@ pub fn run(a: RenderArgs) -> Result<(), Failure> {
         Some(list) => crate::adapt_cli::resolve(list, &a.adapt)?,
         None => Default::default(),
     };
-    let scene = eyeadapt_scene::resolve_scene(&a.scene)?;
+    let scene = if a.define.is_empty() {
+        eyeadapt_scene::resolve_scene(&a.scene)?
+    } else {
+        let path = std::path::Path::new(&a.scene);
+        if !eyeadapt_scene::is_mitsuba_path(path) {
+            return Err(Failure::Input(format!(
+                "-D gives parameters of Mitsuba XML scenes; {} is not one",
+                a.scene
+            )));
+        }
+        let pairs: Vec<(&str, &str)> = a
+            .define
+            .iter()
+            .map(|(n, v)| (n.as_str(), v.as_str()))
+            .collect();
+        eyeadapt_scene::load_mitsuba(path, &pairs)?
+    };
     for w in &scene.warnings {
         eprintln!("{w}");
     }

@@ -20,8 +20,8 @@
 //! direction = [-0.3, -1.0, 0.2]      # the way the light travels
 //! irradiance = [3.0, 2.9, 2.7]       # on a surface facing the sun (W/m² in linear sRGB)
 //! ```
-use crate::Rgb;
-use glam::Vec3;
+use crate::{Param, Rgb, TextureId};
+use glam::{Mat3, Vec3};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
@@ -42,5 +42,34 @@ pub enum Light {
     Directional {
         direction: Vec3,
         irradiance: Rgb,
+    },
+    /// A spot whose beam carries an image (Mitsuba's `spot` with a `texture`): the profile of
+    /// [`Light::Spot`] around the frame's +z, times `texture` at
+    /// uv = ½ + ½·(x, y) / (z·tan cone_deg) of the direction (x, y, z) in the light's frame.
+    TexturedSpot {
+        position: Vec3,
+        /// Columns: where the light's x, y and z (beam) axes point in the world
+        /// (Mitsuba's `to_world`, linear part).
+        frame: Mat3,
+        intensity: Rgb,
+        cone_deg: f32,
+        falloff_deg: f32,
+        texture: TextureId,
+    },
+    /// A slide projector (Mitsuba's `projector`): a point light whose intensity in direction
+    /// d = (x, y, z) of its frame (z > 0, along the beam) is π·scale·E(uv)/cos³θ, with E =
+    /// `irradiance` at uv = ½·(1 − x/(z·t), 1 − y·aspect/(z·t)), t = `tan_half_fov_x`, zero
+    /// where uv leaves [0, 1]²: a plane one unit in front of it, facing it, receives
+    /// π·scale·E(uv).
+    Projector {
+        position: Vec3,
+        /// Columns: where the light's x, y and z (beam) axes point in the world.
+        frame: Mat3,
+        irradiance: Param<Rgb>,
+        scale: f32,
+        /// tan of half the horizontal field of view (> 0).
+        tan_half_fov_x: f32,
+        /// Width over height of the projected image (the texture's; 1 for a constant).
+        aspect: f32,
     },
 }

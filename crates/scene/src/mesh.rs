@@ -23,6 +23,8 @@ pub struct Mesh {
     pub uvs: Vec<Vec2>,
     /// Per-vertex colours (linear sRGB, read by `mesh_attribute` textures), or empty.
     pub colors: Vec<Rgb>,
+    /// Per-triangle colours (linear sRGB, read by `face_color` textures), or empty.
+    pub face_colors: Vec<Rgb>,
 }
 
 impl Mesh {

@@ -337,6 +337,7 @@ fn mesh_of(path: &Path, model: &tobj::Model) -> Result<Mesh, ConvertError> {
         normals,
         uvs,
         colors,
+        face_colors: Vec::new(),
     })
 }
 

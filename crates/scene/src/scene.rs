@@ -36,6 +36,10 @@ pub struct Scene {
     pub environment: Option<Rgb>,
     /// An environment map seen by rays that leave the scene (added to `environment`).
     pub environment_map: Option<EnvironmentMap>,
+    /// Emission that varies over a surface: each listed material's `emission` is multiplied
+    /// by its texture at every point (Mitsuba's `area` emitter with a textured `radiance`;
+    /// the material's `emission` is then the texture's scale). A material appears at most once.
+    pub emission_textures: Vec<(MaterialId, TextureId)>,
     pub render: RenderDefaults,
     /// The scene's own camera path, already validated.
     pub camera_path: Option<CameraPath>,
@@ -60,6 +64,14 @@ impl Scene {
 
     pub fn texture(&self, id: TextureId) -> &Texture {
         &self.textures[id.0 as usize]
+    }
+
+    /// The texture that multiplies material `id`'s emission, if any.
+    pub fn emission_texture(&self, id: MaterialId) -> Option<TextureId> {
+        self.emission_textures
+            .iter()
+            .find(|(m, _)| *m == id)
+            .map(|&(_, t)| t)
     }
 
     /// True when the scene has objects or lights that move over time.

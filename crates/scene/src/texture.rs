@@ -22,10 +22,15 @@ pub enum Texture {
         color1: Rgb,
         to_uv: Affine2,
     },
-    /// A per-vertex attribute of the mesh, interpolated over the triangle (Mitsuba's
-    /// `mesh_attribute`); only `vertex_color` ([`crate::Mesh::colors`]) exists.
+    /// An attribute of the mesh (Mitsuba's `mesh_attribute`): `vertex_color`
+    /// ([`crate::Mesh::colors`], interpolated over the triangle) or `face_color`
+    /// ([`crate::Mesh::face_colors`], one per triangle).
     MeshAttribute {
         name: String,
+    },
+    /// The same value everywhere, without colour conversion (Mitsuba's `rawconstant`).
+    Constant {
+        value: Rgb,
     },
 }
 

@@ -77,6 +77,9 @@ fn full() -> Scene {
             Texture::MeshAttribute {
                 name: "vertex_color".into(),
             },
+            Texture::Constant {
+                value: Rgb::new(0.5, 0.5, 1.0),
+            },
         ],
         meshes: vec![Mesh {
             name: "m".into(),
@@ -85,6 +88,7 @@ fn full() -> Scene {
             normals: vec![Vec3::Z; 3],
             uvs: vec![Vec2::ZERO, Vec2::X, Vec2::Y],
             colors: vec![Rgb::ONE; 3],
+            face_colors: vec![Rgb::splat(0.5)],
         }],
         instances: vec![Instance {
             mesh: MeshId(0),
@@ -107,7 +111,24 @@ fn full() -> Scene {
                 direction: -Vec3::Y,
                 irradiance: Rgb::ONE,
             },
+            Light::TexturedSpot {
+                position: Vec3::Y,
+                frame: glam::Mat3::IDENTITY,
+                intensity: Rgb::ONE,
+                cone_deg: 30.0,
+                falloff_deg: 20.0,
+                texture: TextureId(0),
+            },
+            Light::Projector {
+                position: Vec3::Y,
+                frame: glam::Mat3::IDENTITY,
+                irradiance: Param::Texture(TextureId(0)),
+                scale: 1.0,
+                tan_half_fov_x: 0.5,
+                aspect: 2.0,
+            },
         ],
+        emission_textures: vec![(MaterialId(2), TextureId(0))],
         environment: Some(Rgb::splat(0.1)),
         environment_map: Some(EnvironmentMap {
             filename: "sky.exr".into(),
@@ -329,6 +350,56 @@ fn changes() -> Vec<(&'static str, Change)> {
         }),
         ("mesh_attribute.name", |s| {
             s.textures[2] = Texture::MeshAttribute { name: "uv".into() }
+        }),
+        ("rawconstant.value", |s| {
+            s.textures[3] = Texture::Constant {
+                value: Rgb::new(0.5, 0.5, 0.9),
+            }
+        }),
+        ("mesh.face_colors", |s| s.meshes[0].face_colors[0].y = 0.1),
+        ("emission_textures", |s| s.emission_textures.clear()),
+        ("emission_textures.texture", |s| {
+            s.emission_textures[0].1 = TextureId(1)
+        }),
+        ("textured_spot.frame", |s| {
+            if let Light::TexturedSpot { frame, .. } = &mut s.lights[3] {
+                *frame = glam::Mat3::from_rotation_z(1.0);
+            }
+        }),
+        ("textured_spot.texture", |s| {
+            if let Light::TexturedSpot { texture, .. } = &mut s.lights[3] {
+                *texture = TextureId(1);
+            }
+        }),
+        ("textured_spot.cone_deg", |s| {
+            if let Light::TexturedSpot { cone_deg, .. } = &mut s.lights[3] {
+                *cone_deg = 31.0;
+            }
+        }),
+        ("projector.irradiance", |s| {
+            if let Light::Projector { irradiance, .. } = &mut s.lights[4] {
+                *irradiance = Param::Const(Rgb::ONE);
+            }
+        }),
+        ("projector.scale", |s| {
+            if let Light::Projector { scale, .. } = &mut s.lights[4] {
+                *scale = 2.0;
+            }
+        }),
+        ("projector.tan_half_fov_x", |s| {
+            if let Light::Projector { tan_half_fov_x, .. } = &mut s.lights[4] {
+                *tan_half_fov_x = 0.6;
+            }
+        }),
+        ("projector.aspect", |s| {
+            if let Light::Projector { aspect, .. } = &mut s.lights[4] {
+                *aspect = 1.0;
+            }
+        }),
+        ("projector.position", |s| {
+            if let Light::Projector { position, .. } = &mut s.lights[4] {
+                position.x = 1.0;
+            }
         }),
         ("mesh.name", |s| s.meshes[0].name = "n".into()),
         ("mesh.positions", |s| s.meshes[0].positions[2].z = 0.1),

@@ -918,7 +918,7 @@ fn bad_texture_files_and_textures_where_constants_belong_are_errors() {
         e.contains("test.xml:2:") && e.contains("missing.png"),
         "{e}"
     );
-    let e = load("<shape type=\"cube\"><emitter type=\"area\"><texture type=\"checkerboard\" name=\"radiance\"/></emitter></shape>")
+    let e = load("<shape type=\"cube\"/><emitter type=\"point\"><texture type=\"checkerboard\" name=\"intensity\"/></emitter>")
         .unwrap_err()
         .to_string();
     assert!(
@@ -993,11 +993,15 @@ fn direct_and_wrapped_integrators_render_with_the_path_tracer() {
     .unwrap();
     assert_eq!(s.render.max_depth, Some(5));
     assert!(s.warnings[0].message.contains("ptracer"));
-    let e = scene("<integrator type=\"volpath\"/>")
+    // Without media, volpath is path (with a warning); with them it is refused.
+    let s = scene("<integrator type=\"volpath\"/>").unwrap();
+    assert_eq!(s.render.max_depth, Some(-1));
+    assert!(s.warnings[0].message.contains("no participating media"));
+    let e = load("<integrator type=\"volpath\"/><shape type=\"sphere\"><medium type=\"homogeneous\" name=\"interior\"/></shape><emitter type=\"constant\"/>")
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("unsupported <integrator type=\"volpath\">"),
+        e.contains("unsupported <integrator type=\"volpath\"> with participating media"),
         "{e}"
     );
 }

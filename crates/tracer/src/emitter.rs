@@ -1,7 +1,10 @@
 //! What emits light, as the light set stores it: emissive triangles (and the parallelograms two
-//! of them may form), point, spot and directional lights. Shared by [`crate::lights`] (sampling) and
+//! of them may form; a textured one carries its UVs), point, spot and directional lights, and
+//! the beams of [`crate::beam`]. Shared by [`crate::lights`] (sampling) and
 //! [`crate::light_pick`] (choosing which light a point samples).
-use glam::Vec3A;
+use crate::beam::{Lookup, Projector, TexturedSpot};
+use eyeadapt_scene::Texture;
+use glam::{Vec2, Vec3A};
 
 #[inline]
 pub fn luminance(c: Vec3A) -> f32 {
@@ -15,7 +18,13 @@ pub struct AreaTri {
     pub e2: Vec3A,
     pub n: Vec3A,
     pub area: f32,
+    /// Emitted radiance; for a textured emitter, its mean (what the light choice weighs).
     pub emission: Vec3A,
+    /// Index of the texture whose value times `scale` is the radiance (`u32::MAX`: none).
+    pub texture: u32,
+    pub scale: Vec3A,
+    /// Texture coordinates of the three vertices (for a textured emitter).
+    pub uv: [Vec2; 3],
 }
 
 /// Two emissive triangles that together form a parallelogram (a quad light split along a
@@ -49,6 +58,8 @@ pub enum DeltaLight {
         direction: Vec3A,
         irradiance: Vec3A,
     },
+    TexturedSpot(TexturedSpot),
+    Projector(Projector),
 }
 
 /// Light arriving at a point from a delta light.
@@ -65,17 +76,33 @@ pub struct Arrival {
 impl DeltaLight {
     /// The light's colour: intensity, or a directional light's irradiance.
     pub fn colour(&self) -> Vec3A {
-        match *self {
-            DeltaLight::Point { intensity, .. } | DeltaLight::Spot { intensity, .. } => intensity,
-            DeltaLight::Directional { irradiance, .. } => irradiance,
+        match self {
+            DeltaLight::Point { intensity, .. } | DeltaLight::Spot { intensity, .. } => *intensity,
+            DeltaLight::Directional { irradiance, .. } => *irradiance,
+            DeltaLight::TexturedSpot(s) => s.colour(),
+            DeltaLight::Projector(p) => p.colour(),
         }
     }
 
-    /// What arrives at `x`; `None` at the light's own position.
+    /// What arrives at `x`, the beams' images read through `lookup`; `None` at the light's
+    /// own position.
     #[inline]
-    pub fn arrival(&self, x: Vec3A) -> Option<Arrival> {
+    pub fn arrival(&self, x: Vec3A, lookup: Lookup) -> Option<Arrival> {
         let position = match *self {
             DeltaLight::Point { position, .. } | DeltaLight::Spot { position, .. } => position,
+            DeltaLight::TexturedSpot(s) => s.position,
+            DeltaLight::Projector(p) => {
+                let d = p.position - x;
+                let dist = d.length();
+                if dist <= 0.0 {
+                    return None;
+                }
+                return Some(Arrival {
+                    wi: d / dist,
+                    dist,
+                    li: p.irradiance_at(x, lookup),
+                });
+            }
             DeltaLight::Directional {
                 direction,
                 irradiance,
@@ -97,16 +124,19 @@ impl DeltaLight {
         Some(Arrival {
             wi,
             dist,
-            li: self.intensity(-wi) / d2,
+            li: self.intensity(-wi, lookup) / d2,
         })
     }
 
     /// Radiant intensity towards direction `w` (unit, leaving the light); a directional
     /// light's irradiance.
-    fn intensity(&self, w: Vec3A) -> Vec3A {
+    fn intensity(&self, w: Vec3A, lookup: Lookup) -> Vec3A {
         match *self {
             DeltaLight::Point { intensity, .. } => intensity,
             DeltaLight::Directional { irradiance, .. } => irradiance,
+            DeltaLight::TexturedSpot(s) => s.intensity(w, lookup),
+            // Handled in `arrival` (its value depends on the point, not only the direction).
+            DeltaLight::Projector(_) => Vec3A::ZERO,
             DeltaLight::Spot {
                 direction,
                 intensity,
@@ -150,6 +180,30 @@ impl AreaTri {
             n,
             area,
             emission,
+            texture: u32::MAX,
+            scale: emission,
+            uv: [Vec2::ZERO, Vec2::X, Vec2::Y],
         })
+    }
+
+    /// This triangle with its radiance `scale` × texture `texture` (whose mean is `mean`) at
+    /// vertex UVs `uv`.
+    pub fn textured(self, texture: u32, mean: Vec3A, uv: [Vec2; 3]) -> AreaTri {
+        AreaTri {
+            emission: self.scale * mean,
+            texture,
+            uv,
+            ..self
+        }
+    }
+
+    /// The radiance at barycentrics (`b1`, `b2`) (weights of vertices 1 and 2).
+    #[inline]
+    pub fn radiance(&self, b1: f32, b2: f32, textures: &[Texture]) -> Vec3A {
+        if self.texture == u32::MAX {
+            return self.emission;
+        }
+        let uv = self.uv[0] * (1.0 - b1 - b2) + self.uv[1] * b1 + self.uv[2] * b2;
+        self.scale * crate::texture::eval_uv(&textures[self.texture as usize], uv)
     }
 }

@@ -272,20 +272,21 @@ pub fn eye_direct_per_light(
             let k = cdf.partition_point(|&c| c <= u0).min(tris.len() - 1);
             let a = &lights.area[tris[k]];
             let su = u[0].sqrt();
-            let y = a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1]);
+            let (b1, b2) = (su * (1.0 - u[1]), su * u[1]);
+            let y = a.v0 + a.e1 * b1 + a.e2 * b2;
             let d = y - eye;
             let d2 = d.length_squared();
             let wi = d / d2.sqrt();
             let cos_l = -a.n.dot(wi);
             let kern = (1.0 + wi.dot(axis)) * 0.25;
             if cos_l > 0.0 && kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
-                sum += (luminance(a.emission) * kern * cos_l / d2) as f64;
+                sum += (luminance(a.radiance(b1, b2, &lights.textures)) * kern * cos_l / d2) as f64;
             }
         }
         out.push((*emission, sum * *total_area as f64 / samples.max(1) as f64));
     }
     for l in &lights.deltas {
-        let v = match l.arrival(eye) {
+        let v = match l.arrival(eye, crate::beam::Lookup::Texture(&lights.textures)) {
             Some(a) => {
                 let kern = (1.0 + a.wi.dot(axis)) * 0.25;
                 if kern > 0.0 && visible(scene, &mut scratch, eye, a.wi, a.dist) {

@@ -10,7 +10,7 @@ use crate::accel::{Accel, InputTri, build_params};
 use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
 use eyeadapt_scene::{MaterialId, Scene};
-use glam::{Affine3A, Mat3A, Vec3A};
+use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::cwbvh::{CwBvh, Traversal};
@@ -82,11 +82,13 @@ pub struct Built {
 
 impl Geometry {
     /// Builds from the scene's instances; `material_index` maps a material to the tracer's
-    /// table, `emission` gives a material-table entry's emitted radiance (zero: not a light).
+    /// table, `emission` gives a material-table entry's emitted radiance (zero: not a light)
+    /// and `emission_texture` the texture multiplying it, with the texture's mean.
     pub fn build(
         scene: &Scene,
         material_index: impl Fn(Option<MaterialId>) -> u32,
         emission: impl Fn(u32) -> Vec3A,
+        emission_texture: impl Fn(u32) -> Option<(u32, Vec3A)>,
     ) -> Built {
         let mut uses = vec![0u32; scene.meshes.len()];
         for inst in &scene.instances {
@@ -101,11 +103,24 @@ impl Geometry {
             let material = material_index(inst.material);
             let le = emission(material);
             let m = inst.to_world.matrix;
+            let textured = emission_texture(material);
             let light_base = if le.max_element() > 0.0 {
                 let base = light_of.len() as u32;
                 for t in &mesh.indices {
                     let v = t.map(|k| Vec3A::from(m.transform_point3(mesh.positions[k as usize])));
-                    light_of.push(match AreaTri::new(v, le) {
+                    let tri = AreaTri::new(v, le).map(|a| match textured {
+                        None => a,
+                        // The mesh's UVs, else the barycentrics (as hits read them).
+                        Some((tex, mean)) => {
+                            let uv = if mesh.uvs.is_empty() {
+                                [Vec2::ZERO, Vec2::X, Vec2::Y]
+                            } else {
+                                t.map(|k| mesh.uvs[k as usize])
+                            };
+                            a.textured(tex, mean, uv)
+                        }
+                    });
+                    light_of.push(match tri {
                         Some(a) => {
                             area_lights.push(a);
                             area_lights.len() as u32 - 1

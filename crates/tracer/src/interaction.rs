@@ -20,6 +20,8 @@ pub struct SurfaceInteraction {
     pub dpdv: Vec3A,
     /// Interpolated vertex colour (zero without vertex colours).
     pub color: Vec3A,
+    /// The triangle's colour (zero without face colours).
+    pub face_color: Vec3A,
     pub instance: u32,
     pub prim: u32,
     /// Index into the tracer's material table.
@@ -34,12 +36,14 @@ pub struct Attributes {
     normals: Vec<Vec3A>,
     uvs: Vec<Vec2>,
     colors: Vec<Vec3A>,
+    face_colors: Vec<Vec3A>,
 }
 
 impl Attributes {
     /// The mesh's attributes, with normals carried through `to_world` when given.
     pub fn of(mesh: &Mesh, to_world: Option<&Transform>) -> Attributes {
         let any = !(mesh.normals.is_empty() && mesh.uvs.is_empty() && mesh.colors.is_empty());
+        // Face colours need no indices, only one colour per triangle.
         Attributes {
             indices: if any {
                 mesh.indices.clone()
@@ -53,6 +57,11 @@ impl Attributes {
                 .collect(),
             uvs: mesh.uvs.clone(),
             colors: mesh.colors.iter().map(|&c| Vec3A::from(c)).collect(),
+            face_colors: if mesh.face_colors.len() == mesh.indices.len() {
+                mesh.face_colors.iter().map(|&c| Vec3A::from(c)).collect()
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -61,6 +70,7 @@ impl Attributes {
             + self.normals.len() * 16
             + self.uvs.len() * 8
             + self.colors.len() * 16
+            + self.face_colors.len() * 16
     }
 
     /// The interaction at barycentrics `b` (weights of vertices 1 and 2) of triangle `prim`,
@@ -93,6 +103,11 @@ impl Attributes {
             }
             _ => Vec3A::ZERO,
         };
+        let face_color = self
+            .face_colors
+            .get(prim as usize)
+            .copied()
+            .unwrap_or(Vec3A::ZERO);
         SurfaceInteraction {
             t: 0.0,
             p: Vec3A::ZERO,
@@ -102,6 +117,7 @@ impl Attributes {
             dpdu,
             dpdv,
             color,
+            face_color,
             instance: 0,
             prim,
             material: 0,

@@ -10,6 +10,7 @@
 //! the number of threads.
 
 mod accel;
+mod beam;
 mod bsdf;
 mod bump;
 mod bvh_bench;

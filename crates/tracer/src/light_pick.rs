@@ -2,7 +2,8 @@
 //!
 //! The choosable *units* are: each quad light (two emissive triangles paired into a
 //! parallelogram), each remaining emissive triangle, each point, spot or directional light, and
-//! the environment (weighted by its mean radiance).
+//! the environment (weighted by its mean radiance). Textured emitters count with their
+//! texture's mean.
 //!
 //! With few units (2 ..= [`SPATIAL_MAX_UNITS`]) the choice depends on the receiving point: each
 //! unit is weighted by a conservative estimate of the irradiance it can deliver there — its
@@ -16,6 +17,7 @@
 //!
 //! With one unit, or more than [`SPATIAL_MAX_UNITS`] (the cost per shading point grows with the
 //! count), units are chosen in proportion to their total power, the same everywhere.
+use crate::beam::Lookup;
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -150,6 +152,12 @@ impl LightPicker {
                 DeltaLight::Directional { irradiance, .. } => {
                     PI * r * r * weight_luminance(irradiance)
                 }
+                DeltaLight::TexturedSpot(s) => {
+                    2.0 * PI
+                        * (1.0 - 0.5 * (s.cos_cone + s.cos_falloff))
+                        * weight_luminance(s.colour())
+                }
+                DeltaLight::Projector(p) => weight_luminance(p.power()),
             } as f64);
         }
         if let Some(e) = env {
@@ -289,7 +297,8 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
             power * cos_e.max(1e-3) * cos_r.max(1e-3) / d2.max(radius * radius).max(1e-12)
         }
         Bounds::Delta(l) => {
-            let Some(a) = l.arrival(x) else {
+            // A beam's image counts with its mean: positive wherever the beam reaches.
+            let Some(a) = l.arrival(x, Lookup::Mean) else {
                 return 0.0;
             };
             let cos_r = match n {
@@ -325,6 +334,9 @@ mod tests {
             n,
             area: 0.5,
             emission,
+            texture: u32::MAX,
+            scale: emission,
+            uv: [glam::Vec2::ZERO, glam::Vec2::X, glam::Vec2::Y],
         };
         (
             vec![tri(o, o + e1, o + e2), tri(o + e1 + e2, o + e2, o + e1)],

@@ -1,10 +1,11 @@
 //! Every light source, for next-event estimation: emissive triangles, point, spot and
 //! directional lights ([`crate::emitter`]) and the environment ([`crate::envmap`]);
 //! [`crate::light_pick`] chooses which one a shading point samples.
+use crate::beam::{self, Lookup};
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::envmap::Environment;
 use crate::light_pick::{LightPicker, Unit};
-use eyeadapt_scene::Light;
+use eyeadapt_scene::{Light, Texture};
 use glam::Vec3A;
 use std::f32::consts::PI;
 
@@ -33,57 +34,25 @@ pub struct LightSet {
     picker: LightPicker,
     /// For each area triangle, its unit in `picker`.
     unit_of: Vec<u32>,
+    /// The scene's textures (textured area lights and beams read them).
+    pub textures: Vec<Texture>,
 }
 
 impl LightSet {
     /// The light set of the emissive triangles `area` (indexed as hits name them), the delta
-    /// lights and the environment.
+    /// lights and the environment; `textures` are the scene's.
     pub fn build(
         area: Vec<AreaTri>,
         lights: &[Light],
         env: Option<Environment>,
         scene_radius: f32,
+        textures: &[Texture],
     ) -> LightSet {
-        let deltas: Vec<DeltaLight> = lights
-            .iter()
-            .map(|l| match *l {
-                Light::Point {
-                    position,
-                    intensity,
-                } => DeltaLight::Point {
-                    position: position.into(),
-                    intensity: intensity.into(),
-                },
-                Light::Spot {
-                    position,
-                    direction,
-                    intensity,
-                    cone_deg,
-                    falloff_deg,
-                } => {
-                    let cone = cone_deg.to_radians();
-                    let fall = falloff_deg.to_radians().min(cone);
-                    DeltaLight::Spot {
-                        position: position.into(),
-                        direction: direction.normalize().into(),
-                        intensity: intensity.into(),
-                        cos_cone: cone.cos(),
-                        cos_falloff: fall.cos(),
-                        cone,
-                        inv_transition: 1.0 / (cone - fall).max(1e-6),
-                    }
-                }
-                Light::Directional {
-                    direction,
-                    irradiance,
-                } => DeltaLight::Directional {
-                    direction: direction.normalize().into(),
-                    irradiance: irradiance.into(),
-                },
-            })
-            .collect();
+        let deltas: Vec<DeltaLight> = lights.iter().map(|l| delta_light(l, textures)).collect();
         let (quad_of, quads) = pair_parallelograms(&area);
-        LightSet::assemble(area, quad_of, quads, deltas, env, scene_radius)
+        let mut set = LightSet::assemble(area, quad_of, quads, deltas, env, scene_radius);
+        set.textures = textures.to_vec();
+        set
     }
 
     fn assemble(
@@ -113,6 +82,7 @@ impl LightSet {
             env,
             picker,
             unit_of,
+            textures: Vec::new(),
         }
     }
 
@@ -176,13 +146,19 @@ impl LightSet {
             Unit::Area { first, quad } => {
                 let a = &self.area[first as usize];
                 // A parallelogram is sampled uniformly over both halves (same emission and
-                // normal), a lone triangle uniformly over itself.
-                let y = if quad == u32::MAX {
+                // normal), a lone triangle uniformly over itself (a textured one by area too,
+                // its radiance read where the point falls: unbiased, if noisier than
+                // Mitsuba's sampling of the texture).
+                let (y, li) = if quad == u32::MAX {
                     let su = u[0].sqrt();
-                    a.v0 + a.e1 * (su * (1.0 - u[1])) + a.e2 * (su * u[1])
+                    let (b1, b2) = (su * (1.0 - u[1]), su * u[1]);
+                    (
+                        a.v0 + a.e1 * b1 + a.e2 * b2,
+                        a.radiance(b1, b2, &self.textures),
+                    )
                 } else {
                     let q = &self.quads[quad as usize];
-                    q.o + q.e1 * u[0] + q.e2 * u[1]
+                    (q.o + q.e1 * u[0] + q.e2 * u[1], a.emission)
                 };
                 let d = y - x;
                 let d2 = d.length_squared();
@@ -198,13 +174,13 @@ impl LightSet {
                 Some(LightSample {
                     wi,
                     dist,
-                    li: a.emission,
+                    li,
                     pdf: p / self.unit_area(first as usize) * d2 / cos_l,
                     delta: false,
                 })
             }
             Unit::Delta(j) => {
-                let a = self.deltas[j as usize].arrival(x)?;
+                let a = self.deltas[j as usize].arrival(x, Lookup::Texture(&self.textures))?;
                 Some(LightSample {
                     wi: a.wi,
                     dist: a.dist,
@@ -253,6 +229,86 @@ impl LightSet {
     }
 }
 
+/// The tracer's form of a scene light (`textures`: the scene's, for the beams' means).
+fn delta_light(l: &Light, textures: &[Texture]) -> DeltaLight {
+    let spot_angles = |cone_deg: f32, falloff_deg: f32| {
+        let cone = cone_deg.to_radians();
+        let fall = falloff_deg.to_radians().min(cone);
+        (cone, fall, 1.0 / (cone - fall).max(1e-6))
+    };
+    match *l {
+        Light::Point {
+            position,
+            intensity,
+        } => DeltaLight::Point {
+            position: position.into(),
+            intensity: intensity.into(),
+        },
+        Light::Spot {
+            position,
+            direction,
+            intensity,
+            cone_deg,
+            falloff_deg,
+        } => {
+            let (cone, fall, inv_transition) = spot_angles(cone_deg, falloff_deg);
+            DeltaLight::Spot {
+                position: position.into(),
+                direction: direction.normalize().into(),
+                intensity: intensity.into(),
+                cos_cone: cone.cos(),
+                cos_falloff: fall.cos(),
+                cone,
+                inv_transition,
+            }
+        }
+        Light::Directional {
+            direction,
+            irradiance,
+        } => DeltaLight::Directional {
+            direction: direction.normalize().into(),
+            irradiance: irradiance.into(),
+        },
+        Light::TexturedSpot {
+            position,
+            frame,
+            intensity,
+            cone_deg,
+            falloff_deg,
+            texture,
+        } => {
+            let (cone, fall, inv_transition) = spot_angles(cone_deg, falloff_deg);
+            DeltaLight::TexturedSpot(beam::TexturedSpot {
+                position: position.into(),
+                to_local: beam::to_local(frame),
+                intensity: intensity.into(),
+                cos_cone: cone.cos(),
+                cos_falloff: fall.cos(),
+                cone,
+                inv_transition,
+                tan_cone: cone.tan(),
+                image: beam::Image::new(eyeadapt_scene::Param::Texture(texture), textures),
+            })
+        }
+        Light::Projector {
+            position,
+            frame,
+            irradiance,
+            scale,
+            tan_half_fov_x,
+            aspect,
+        } => DeltaLight::Projector(beam::Projector {
+            position: position.into(),
+            to_local: beam::to_local(frame),
+            axis: frame.z_axis.into(),
+            image: beam::Image::new(irradiance, textures),
+            pi_scale: PI * scale,
+            tan_half_fov_x,
+            aspect,
+        }),
+    }
+}
+
 /// Finds consecutive emissive triangles that form a parallelogram with equal emission and
 /// facing: they share two vertices (the diagonal), and the two others mirror each other across
 /// its midpoint. Meshes list a quad's two triangles next to each other (OBJ, PLY, the built-in
@@ -264,7 +320,10 @@ fn pair_parallelograms(area: &[AreaTri]) -> (Vec<u32>, Vec<Parallelogram>) {
     let mut i = 0;
     while i + 1 < area.len() {
         let (a, b) = (&area[i], &area[i + 1]);
+        // Textured triangles stay triangles (their UVs are per triangle).
         let found = (a.emission == b.emission
+            && a.texture == u32::MAX
+            && b.texture == u32::MAX
             && a.n.dot(b.n) > 1.0 - 1e-6
             && (a.area - b.area).abs() <= 1e-5 * a.area.max(b.area))
         .then(|| {
@@ -375,7 +434,7 @@ mod tests {
         }
         tris.extend(under);
         tris.extend(away);
-        let lights = LightSet::build(white(&tris), &[], None, 10.0);
+        let lights = LightSet::build(white(&tris), &[], None, 10.0, &[]);
         assert!(lights.spatial_choice());
         assert_eq!(lights.parallelogram_count(), 4);
         let exact = square_irradiance(1.0, 0.7) + square_irradiance(1.0, 1.5);
@@ -393,7 +452,7 @@ mod tests {
         let exact = square_irradiance(s, h);
         for other in [false, true] {
             let tris = square_light(s, h, other);
-            let lights = LightSet::build(white(&tris), &[], None, 10.0);
+            let lights = LightSet::build(white(&tris), &[], None, 10.0, &[]);
             assert_eq!(lights.parallelogram_count(), 1, "diagonal variant {other}");
             let e = irradiance(&lights, 1024);
             assert!((e / exact - 1.0).abs() < 2e-3, "E {e} vs exact {exact}");
@@ -401,7 +460,7 @@ mod tests {
         // Two triangles that are not a parallelogram stay triangles.
         let mut tris = square_light(s, h, false);
         tris[1][2] += Vec3A::new(0.1, 0.0, 0.0);
-        let lights = LightSet::build(white(&tris), &[], None, 10.0);
+        let lights = LightSet::build(white(&tris), &[], None, 10.0, &[]);
         assert_eq!(lights.parallelogram_count(), 0);
     }
 
@@ -410,7 +469,7 @@ mod tests {
         // The same 256 stratified samples per estimate, 64 independent estimates: pairing the
         // halves must not add variance (it removes the noise of dealing samples to halves).
         let tris = square_light(1.0, 0.3, false);
-        let paired = LightSet::build(white(&tris), &[], None, 10.0);
+        let paired = LightSet::build(white(&tris), &[], None, 10.0, &[]);
         let halves = LightSet::assemble(
             paired.area.clone(),
             vec![u32::MAX; 2],

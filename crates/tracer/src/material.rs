@@ -43,6 +43,8 @@ struct Entry {
     bump: Option<(TextureId, f32)>,
     /// A blend: its weight and its two children in [`Materials::nodes`].
     blend: Option<(Param<f32>, [u32; 2])>,
+    /// A texture that multiplies `emission` (a textured area emitter's radiance).
+    emission_texture: Option<TextureId>,
 }
 
 /// The flattened material a hit scatters with (a blend's chosen child).
@@ -61,6 +63,7 @@ impl Entry {
             normal_map: None,
             bump: None,
             blend: None,
+            emission_texture: None,
         };
         root.flatten(&m.bsdf, textures, nodes)
     }
@@ -122,8 +125,8 @@ impl Entry {
             ..
         } = bsdf
         {
-            let d = texture::mean(*diffuse_reflectance, textures);
-            let s = texture::mean(*specular_reflectance, textures);
+            let d = texture::param_mean(*diffuse_reflectance, textures);
+            let s = texture::param_mean(*specular_reflectance, textures);
             self.spec_prob = PPlastic::spec_prob(d, s);
         }
         self.bsdf = bsdf.clone();
@@ -148,6 +151,9 @@ impl Materials {
             .map(|m| Entry::new(m, &scene.textures, &mut nodes))
             .collect();
         entries.push(Entry::new(&Material::error(), &scene.textures, &mut nodes));
+        for &(m, t) in &scene.emission_textures {
+            entries[m.0 as usize].emission_texture = Some(t);
+        }
         Materials {
             entries,
             nodes,
@@ -181,9 +187,26 @@ impl Materials {
         self.entries.len() as u32 - 1
     }
 
+    /// The emitted radiance of a material, or of a textured one its scale.
     #[inline]
     pub fn emission(&self, material: u32) -> Vec3A {
         self.entries[material as usize].emission
+    }
+
+    /// The texture multiplying material `material`'s emission, as (texture index, its mean).
+    pub fn emission_texture(&self, material: u32) -> Option<(u32, Vec3A)> {
+        let t = self.entries[material as usize].emission_texture?;
+        Some((t.0, texture::mean(&self.textures[t.0 as usize])))
+    }
+
+    /// The radiance emitted at `si` (front side; the caller checks the side).
+    #[inline]
+    pub fn emission_at(&self, si: &SurfaceInteraction) -> Vec3A {
+        let e = &self.entries[si.material as usize];
+        match e.emission_texture {
+            None => e.emission,
+            Some(t) => e.emission * texture::eval(&self.textures[t.0 as usize], si),
+        }
     }
 
     #[inline]

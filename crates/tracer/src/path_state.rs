@@ -220,7 +220,7 @@ impl PathState {
                 lights.pdf_area(si.light, self.prev_p, self.prev_n, si.p),
             ),
         };
-        let c = self.beta * scene.materials.emission(si.material) * w;
+        let c = self.beta * scene.materials.emission_at(si) * w;
         if self.specular_chain {
             self.out.l += c;
             self.out.emitter = true;

@@ -27,6 +27,7 @@ impl SceneData {
             scene,
             |m: Option<MaterialId>| m.map_or(error, |MaterialId(i)| i),
             |m| materials.emission(m),
+            |m| materials.emission_texture(m),
         );
         let center = (geometry.bounds_min + geometry.bounds_max) * 0.5;
         let radius = ((geometry.bounds_max - geometry.bounds_min).length() * 0.5).max(1e-3);
@@ -34,7 +35,7 @@ impl SceneData {
             scene.environment.map(Vec3A::from),
             scene.environment_map.as_ref(),
         );
-        let lights = LightSet::build(area_lights, &scene.lights, env, radius);
+        let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures);
         SceneData {
             geometry,
             materials,

@@ -1,5 +1,5 @@
 //! Texture lookups at a surface interaction: bitmaps (nearest or bilinear, with Mitsuba's wrap
-//! modes), checkerboards and interpolated vertex colours.
+//! modes), checkerboards, interpolated vertex colours, face colours and constants.
 use crate::emitter::luminance;
 use crate::interaction::SurfaceInteraction;
 use eyeadapt_scene::{FilterType, Image, Param, Rgb, Texture, WrapMode};
@@ -46,14 +46,46 @@ pub fn eval(tex: &Texture, si: &SurfaceInteraction) -> Vec3A {
                 (*color1).into()
             }
         }
+        Texture::MeshAttribute { name } if name == "face_color" => si.face_color,
         Texture::MeshAttribute { .. } => si.color,
+        Texture::Constant { value } => (*value).into(),
+    }
+}
+
+/// The texture's value at `uv` alone (no mesh attributes: those read zero), for what is not
+/// a surface: a beam's image, a point sampled on an emitter.
+#[inline]
+pub fn eval_uv(tex: &Texture, uv: Vec2) -> Vec3A {
+    let si = SurfaceInteraction {
+        uv,
+        ..Default::default()
+    };
+    eval(tex, &si)
+}
+
+/// The texture's mean over its domain: what the choice of light weights a textured
+/// emitter by (any positive weight keeps it unbiased). A mesh attribute counts as 1.
+pub fn mean(tex: &Texture) -> Vec3A {
+    match tex {
+        Texture::Bitmap(b) => {
+            let n = b.image.texels.len().max(1) as f64;
+            let s = b
+                .image
+                .texels
+                .iter()
+                .fold(glam::DVec3::ZERO, |a, t| a + t.as_dvec3());
+            Vec3A::from((s / n).as_vec3())
+        }
+        Texture::Checkerboard { color0, color1, .. } => Vec3A::from((*color0 + *color1) * 0.5),
+        Texture::MeshAttribute { .. } => Vec3A::ONE,
+        Texture::Constant { value } => (*value).into(),
     }
 }
 
 /// The mean over the surface of a colour parameter, over its channels too (Mitsuba's
 /// `Texture::mean`: a bitmap's mean texel, a checkerboard's two colours alike; vertex
 /// colours, unknown before the hit, count as 0.5).
-pub fn mean(p: Param<Rgb>, textures: &[Texture]) -> f32 {
+pub fn param_mean(p: Param<Rgb>, textures: &[Texture]) -> f32 {
     let avg = |c: Rgb| (c.x + c.y + c.z) / 3.0;
     match p {
         Param::Const(c) => avg(c),
@@ -64,6 +96,7 @@ pub fn mean(p: Param<Rgb>, textures: &[Texture]) -> f32 {
             }
             Texture::Checkerboard { color0, color1, .. } => 0.5 * (avg(*color0) + avg(*color1)),
             Texture::MeshAttribute { .. } => 0.5,
+            Texture::Constant { value } => avg(*value),
         },
     }
 }

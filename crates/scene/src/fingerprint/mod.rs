@@ -8,14 +8,15 @@
 //! make a resume refuse, never mix scenes.
 use crate::gltf::{Node, NodeTracks, Rest, SceneAnimation};
 use crate::{
-    Bitmap, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Light, Mesh,
+    Bitmap, Camera, CameraPath, EnvironmentMap, FilterType, Image, Instance, Keyframe, Mesh,
     Orientation, Param, PixelFilter, Projection, RenderDefaults, Scene, Texture, Transform,
     WrapMode,
 };
 use crate::{Interpolation, Track};
-use glam::{Affine2, DQuat, DVec3, Mat4, Vec2, Vec3};
+use glam::{Affine2, DQuat, DVec3, Mat3, Mat4, Vec2, Vec3};
 use sha2::{Digest, Sha256};
 
+mod light;
 mod material;
 
 /// Something that contributes to a fingerprint.
@@ -141,6 +142,12 @@ impl Feed for DVec3 {
     }
 }
 
+impl Feed for Mat3 {
+    fn feed(&self, h: &mut Sha256) {
+        self.to_cols_array().feed(h);
+    }
+}
+
 impl Feed for Mat4 {
     fn feed(&self, h: &mut Sha256) {
         self.to_cols_array().feed(h);
@@ -165,6 +172,7 @@ impl Feed for Scene {
             lights,
             environment,
             environment_map,
+            emission_textures,
             render,
             camera_path,
             warnings: _,
@@ -178,6 +186,12 @@ impl Feed for Scene {
         lights.feed(h);
         environment.feed(h);
         environment_map.feed(h);
+        // Nothing for the scenes without (their fingerprints stay what they were).
+        for (m, t) in emission_textures {
+            tag(h, 0xE7);
+            m.0.feed(h);
+            t.0.feed(h);
+        }
         render.feed(h);
         camera_path.feed(h);
         animation.as_deref().feed(h);
@@ -354,6 +368,10 @@ impl Feed for Texture {
                 tag(h, 2);
                 name.feed(h);
             }
+            Texture::Constant { value } => {
+                tag(h, 3);
+                value.feed(h);
+            }
         }
     }
 }
@@ -433,6 +451,7 @@ impl Feed for Mesh {
             normals,
             uvs,
             colors,
+            face_colors,
         } = self;
         name.feed(h);
         positions.feed(h);
@@ -440,6 +459,10 @@ impl Feed for Mesh {
         normals.feed(h);
         uvs.feed(h);
         colors.feed(h);
+        if !face_colors.is_empty() {
+            tag(h, 0xFC);
+            face_colors.feed(h);
+        }
     }
 }
 
@@ -453,43 +476,6 @@ impl Feed for Instance {
         mesh.0.feed(h);
         material.map(|m| m.0).feed(h);
         matrix.feed(h);
-    }
-}
-
-impl Feed for Light {
-    fn feed(&self, h: &mut Sha256) {
-        match self {
-            Light::Point {
-                position,
-                intensity,
-            } => {
-                tag(h, 0);
-                position.feed(h);
-                intensity.feed(h);
-            }
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cone_deg,
-                falloff_deg,
-            } => {
-                tag(h, 1);
-                position.feed(h);
-                direction.feed(h);
-                intensity.feed(h);
-                cone_deg.feed(h);
-                falloff_deg.feed(h);
-            }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => {
-                tag(h, 2);
-                direction.feed(h);
-                irradiance.feed(h);
-            }
-        }
     }
 }
 

@@ -79,5 +79,31 @@ pub fn placed(local: &Light, to_world: DMat4) -> Light {
             direction: dir(*direction),
             irradiance: *irradiance,
         },
+        // Mitsuba's lights, which glTF files never hold; carried all the same.
+        Light::TexturedSpot {
+            position, frame, ..
+        }
+        | Light::Projector {
+            position, frame, ..
+        } => {
+            let mut l = local.clone();
+            let (p, f) = (
+                point(*position),
+                glam::DMat3::from_mat4(to_world) * frame.as_dmat3(),
+            );
+            match &mut l {
+                Light::TexturedSpot {
+                    position, frame, ..
+                }
+                | Light::Projector {
+                    position, frame, ..
+                } => {
+                    *position = p;
+                    *frame = f.as_mat3();
+                }
+                _ => unreachable!(),
+            }
+            l
+        }
     }
 }

@@ -120,6 +120,7 @@ pub fn primitive_mesh(
         normals,
         uvs,
         colors,
+        face_colors: Vec::new(),
     }))
 }
 

@@ -16,6 +16,9 @@ pub(crate) struct PlyMesh {
     /// Empty unless the vertices have colours.
     pub colors: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
+    /// One per triangle (a polygon's colour for each of its triangles); empty unless the
+    /// faces have colours.
+    pub face_colors: Vec<Vec3>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,6 +139,7 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
         uvs: Vec::new(),
         colors: Vec::new(),
         indices: Vec::new(),
+        face_colors: Vec::new(),
     };
     let mut saw_vertices = false;
     for el in &elements {
@@ -144,7 +148,7 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, String> {
                 saw_vertices = true;
                 read_vertices(el, &mut body, bytes.len(), &mut out)?;
             }
-            "face" => read_faces(el, &mut body, &mut out.indices)?,
+            "face" => read_faces(el, &mut body, &mut out)?,
             _ => {
                 for _ in 0..el.count {
                     for p in &el.props {
@@ -258,21 +262,7 @@ fn read_vertices(
     let uv_idx = both(["u", "v"])
         .or_else(|| both(["texture_u", "texture_v"]))
         .or_else(|| both(["s", "t"]));
-    let rgb_idx = [
-        ["r", "g", "b"],
-        ["red", "green", "blue"],
-        ["color_0", "color_1", "color_2"],
-    ]
-    .into_iter()
-    .find_map(|names| match names.map(find) {
-        [Some(r), Some(g), Some(b)] => Some([r, g, b]),
-        _ => None,
-    });
-    // 8-bit colours are 0..255.
-    let rgb_scale = rgb_idx.map_or(1.0, |i| match &el.props[i[0]] {
-        Prop::Scalar(_, Scalar::U8) => 1.0 / 255.0,
-        _ => 1.0,
-    });
+    let (rgb_idx, rgb_scale) = colour_props(el);
     let pos_idx = ["x", "y", "z"].map(find);
     if pos_idx.iter().any(Option::is_none) {
         return Err("the vertex element lacks x, y or z".into());
@@ -308,8 +298,37 @@ fn read_vertices(
     Ok(())
 }
 
-/// The `face` element: polygons of `vertex_indices` (or `vertex_index`), fan-triangulated.
-fn read_faces(el: &Element, body: &mut Body, indices: &mut Vec<[u32; 3]>) -> Result<(), String> {
+/// The colour properties of an element (`r g b`, `red green blue` or `color_0 color_1
+/// color_2`) and the factor that takes them to [0, 1] (1/255 for 8-bit ones).
+fn colour_props(el: &Element) -> (Option<[usize; 3]>, f64) {
+    let find = |n: &str| {
+        el.props
+            .iter()
+            .position(|p| matches!(p, Prop::Scalar(name, _) if name == n))
+    };
+    let idx = [
+        ["r", "g", "b"],
+        ["red", "green", "blue"],
+        ["color_0", "color_1", "color_2"],
+    ]
+    .into_iter()
+    .find_map(|names| match names.map(find) {
+        [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+        _ => None,
+    });
+    let scale = idx.map_or(1.0, |i| match &el.props[i[0]] {
+        Prop::Scalar(_, Scalar::U8) => 1.0 / 255.0,
+        _ => 1.0,
+    });
+    (idx, scale)
+}
+
+/// The `face` element: polygons of `vertex_indices` (or `vertex_index`), fan-triangulated,
+/// and their colours (Mitsuba's `face_color`).
+fn read_faces(el: &Element, body: &mut Body, out: &mut PlyMesh) -> Result<(), String> {
+    let (rgb_idx, rgb_scale) = colour_props(el);
+    let mut rgb = [0.0f64; 3];
+    let indices = &mut out.indices;
     let list = el
         .props
         .iter()
@@ -321,7 +340,10 @@ fn read_faces(el: &Element, body: &mut Body, indices: &mut Vec<[u32; 3]>) -> Res
     for _ in 0..el.count {
         for (i, p) in el.props.iter().enumerate() {
             let Prop::List(_, ct, it) = p else {
-                read_prop(p, body)?;
+                let v = read_prop(p, body)?;
+                if let Some(k) = rgb_idx.and_then(|c| c.iter().position(|&c| c == i)) {
+                    rgb[k] = v * rgb_scale;
+                }
                 continue;
             };
             if i != list {
@@ -340,6 +362,12 @@ fn read_faces(el: &Element, body: &mut Body, indices: &mut Vec<[u32; 3]>) -> Res
             for k in 1..poly.len().saturating_sub(1) {
                 indices.push([poly[0], poly[k], poly[k + 1]]);
             }
+        }
+        // The polygon's colour (read with its other properties, in any order) for each of
+        // its triangles.
+        if rgb_idx.is_some() {
+            let c = Vec3::from_array(rgb.map(|x| x as f32));
+            out.face_colors.resize(indices.len(), c);
         }
     }
     Ok(())

@@ -195,6 +195,7 @@ fn read_stream(z: &mut impl Read, version: u16) -> Result<SerializedMesh, String
             normals,
             uvs,
             colors,
+            face_colors: Vec::new(),
         },
         face_normals: flags & FACE_NORMALS != 0,
     })

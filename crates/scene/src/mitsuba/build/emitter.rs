@@ -1,10 +1,12 @@
-//! Emitter plugins outside shapes: point, spot, directional, constant and envmap.
+//! Emitter plugins outside shapes: point, spot and projector (`beam.rs`), directional,
+//! constant and envmap.
 use super::Builder;
 use crate::mitsuba::xml::Obj;
 use crate::{EnvironmentMap, Light, Rgb};
 use glam::{DMat4, DVec3, Mat3};
 
-const EMITTERS: &str = "area (inside a shape), point, spot, directional, constant and envmap";
+const EMITTERS: &str =
+    "area (inside a shape), point, spot, projector, directional, constant and envmap";
 
 impl<'t> Builder<'t> {
     pub(super) fn emitter(&mut self, o: &'t Obj) {
@@ -35,39 +37,8 @@ impl<'t> Builder<'t> {
                     intensity,
                 });
             }
-            "spot" => {
-                let m = self.transform(o, "to_world").unwrap_or(DMat4::IDENTITY);
-                let intensity = self.colour(o, "intensity").unwrap_or(Rgb::ONE);
-                let cone = self.float_in(o, "cutoff_angle", 0.0..=90.0).unwrap_or(20.0);
-                let falloff = self.float(o, "beam_width").unwrap_or(cone * 0.75);
-                if !(falloff > 0.0 && falloff <= cone) {
-                    let at = self.prop(o, "beam_width").map_or(o.at, |p| p.at);
-                    self.error(
-                        at,
-                        format!(
-                            "{}: beam_width {falloff} must be in (0, cutoff_angle {cone}]",
-                            o.describe()
-                        ),
-                    );
-                }
-                if cone <= 0.0 {
-                    self.error(o.at, format!("{}: cutoff_angle must be > 0", o.describe()));
-                }
-                self.float(o, "sampling_weight");
-                self.finish(o);
-                let direction = m.transform_vector3(DVec3::Z);
-                if direction.length() < 1e-12 {
-                    self.error(o.at, format!("{}: to_world maps +z to zero", o.describe()));
-                    return;
-                }
-                self.scene.lights.push(Light::Spot {
-                    position: m.transform_point3(DVec3::ZERO).as_vec3(),
-                    direction: direction.normalize().as_vec3(),
-                    intensity,
-                    cone_deg: cone as f32,
-                    falloff_deg: falloff as f32,
-                });
-            }
+            "spot" => self.spot(o),
+            "projector" => self.projector(o),
             "constant" => {
                 let radiance = self.colour(o, "radiance").unwrap_or(Rgb::ONE);
                 self.float(o, "sampling_weight");

@@ -1,5 +1,6 @@
 //! The `<integrator>`: `path` and `direct`, and the wrappers and relatives eyeadapt renders
-//! with its path tracer (`moment`, `aov`, `ptracer`), each with a warning at its element.
+//! with its path tracer (`moment`, `aov`, `ptracer`, and `volpath` in a scene without media),
+//! each with a warning at its element.
 use super::Builder;
 use crate::mitsuba::xml::Obj;
 
@@ -39,11 +40,30 @@ impl<'t> Builder<'t> {
                 self.path(o);
             }
             "path" => self.path(o),
+            // Without media Mitsuba's volpath computes what path does (its surface
+            // interactions are path's: BSDF sampling, emitter sampling, MIS, roulette).
+            "volpath" if !self.has_media => {
+                self.warning(
+                    o.at,
+                    format!(
+                        "{}: the scene has no participating media, so eyeadapt renders it with its path integrator (the same image)",
+                        o.describe()
+                    ),
+                );
+                self.path(o);
+            }
+            "volpath" => self.error(
+                o.at,
+                format!(
+                    "unsupported {} with participating media: eyeadapt has no media",
+                    o.describe()
+                ),
+            ),
             "direct" => self.direct(o),
             _ => self.error(
                 o.at,
                 format!(
-                    "unsupported {}: eyeadapt renders the path and direct integrators (and moment, aov and ptracer as path)",
+                    "unsupported {}: eyeadapt renders the path and direct integrators (and moment, aov, ptracer and, without media, volpath as path)",
                     o.describe()
                 ),
             ),

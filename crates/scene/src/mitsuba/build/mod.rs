@@ -9,6 +9,7 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::{Light, MaterialId, Scene};
 use std::collections::{HashMap, HashSet};
 
+mod beam;
 mod blend;
 mod bsdf;
 mod dielectric;
@@ -45,7 +46,19 @@ pub(crate) struct Builder<'t> {
     /// Non-emissive material of each BSDF id, shared by every shape that references it.
     shared: HashMap<String, MaterialId>,
     default_material: Option<MaterialId>,
+    /// Whether the document has a `<medium>` anywhere (`volpath` renders as `path` only
+    /// without one).
+    has_media: bool,
     pub scene: Scene,
+}
+
+/// True when `o` is or contains a `<medium>`.
+fn has_medium(o: &Obj) -> bool {
+    o.tag == "medium"
+        || o.children.iter().any(|c| match &c.kind {
+            ChildKind::Obj(t) => has_medium(t),
+            ChildKind::Ref(_) => false,
+        })
 }
 
 impl<'t> Builder<'t> {
@@ -62,6 +75,7 @@ impl<'t> Builder<'t> {
             images: HashMap::new(),
             shared: HashMap::new(),
             default_material: None,
+            has_media: false,
             scene: Scene {
                 source: sources.main().to_path_buf(),
                 ..Scene::default()
@@ -97,6 +111,7 @@ impl<'t> Builder<'t> {
         for o in objects {
             self.register(o);
         }
+        self.has_media = objects.iter().any(has_medium);
         self.aliases(doc);
         let mut sensor_seen = false;
         let mut integrator_seen = false;
@@ -140,6 +155,12 @@ impl<'t> Builder<'t> {
                             ..
                         } => position.is_finite() && direction.is_finite(),
                         Light::Directional { direction, .. } => direction.is_finite(),
+                        Light::TexturedSpot {
+                            position, frame, ..
+                        }
+                        | Light::Projector {
+                            position, frame, ..
+                        } => position.is_finite() && frame.is_finite(),
                     });
                     self.single_precision(ok, o);
                 }

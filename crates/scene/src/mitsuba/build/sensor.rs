@@ -136,7 +136,7 @@ impl<'t> Builder<'t> {
     }
 
     /// The vertical field of view (degrees) from `fov`/`fov_axis` or `focal_length`.
-    fn field_of_view(&mut self, o: &'t Obj, aspect: f64) -> Option<f64> {
+    pub(super) fn field_of_view(&mut self, o: &'t Obj, aspect: f64) -> Option<f64> {
         let fov = self.float(o, "fov");
         let focal = self
             .prop(o, "focal_length")

@@ -4,7 +4,7 @@ use super::Builder;
 use super::BuiltBsdf;
 use crate::mitsuba::xml::{ChildKind, Obj};
 use crate::shapes::{self, ROUND_SEGMENTS};
-use crate::{Bsdf, Material, MaterialId, Mesh, Rgb, obj, quad_mesh};
+use crate::{Bsdf, Material, MaterialId, Mesh, Param, Rgb, obj, quad_mesh};
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
 const SHAPES: &str =
@@ -61,16 +61,22 @@ impl<'t> Builder<'t> {
 
         let material = match (bsdf, emission) {
             (Err(()), _) => None,
-            (Ok(b), Some(emission)) => {
+            (Ok(b), Some(radiance)) => {
                 let (bsdf, name) = match b {
                     Some(b) => (b.bsdf, b.name),
                     None => (default_bsdf(), "default diffuse".to_string()),
                 };
-                Some(self.scene.add_material(Material {
+                // A textured radiance: the texture times 1.
+                let emission = radiance.constant().unwrap_or(Rgb::ONE);
+                let id = self.scene.add_material(Material {
                     name: format!("{name} + area emitter of {label}"),
                     bsdf,
                     emission,
-                }))
+                });
+                if let Param::Texture(t) = radiance {
+                    self.scene.emission_textures.push((id, t));
+                }
+                Some(id)
             }
             (Ok(Some(b)), None) => match self.shared.get(&b.name) {
                 Some(id) => Some(*id),
@@ -210,6 +216,7 @@ impl<'t> Builder<'t> {
                     normals: p.normals,
                     uvs: p.uvs,
                     colors: p.colors,
+                    face_colors: p.face_colors,
                     indices: p.indices,
                 }]
             }),
@@ -278,8 +285,8 @@ impl<'t> Builder<'t> {
         found.transpose()
     }
 
-    /// The radiance of a nested `area` emitter.
-    pub(super) fn shape_emission(&mut self, o: &'t Obj) -> Option<Rgb> {
+    /// The radiance of a nested `area` emitter: a colour or a texture.
+    pub(super) fn shape_emission(&mut self, o: &'t Obj) -> Option<Param<Rgb>> {
         let mut out = None;
         for c in &o.children {
             let e = match &c.kind {
@@ -307,7 +314,21 @@ impl<'t> Builder<'t> {
                 );
                 continue;
             }
-            let radiance = self.colour(e, "radiance").unwrap_or(Rgb::ONE);
+            let radiance = self
+                .colour_param(e, "radiance")
+                .unwrap_or(Param::Const(Rgb::ONE));
+            // Light sampling reads a texture by UV alone.
+            if let Param::Texture(t) = radiance
+                && let crate::Texture::MeshAttribute { .. } = self.scene.texture(t)
+            {
+                self.error(
+                    e.at,
+                    format!(
+                        "{}: a mesh_attribute radiance is not supported (use a bitmap or checkerboard)",
+                        e.describe()
+                    ),
+                );
+            }
             self.float(e, "sampling_weight");
             self.finish(e);
             if out.is_some() {

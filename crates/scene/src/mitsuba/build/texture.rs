@@ -1,10 +1,11 @@
 //! Texture plugins where Mitsuba accepts a texture: `bitmap` (with `raw`, `filter_type`,
-//! `wrap_mode`, `to_uv`), `checkerboard` and `mesh_attribute` (vertex colours). Each texture
+//! `wrap_mode`, `to_uv`), `checkerboard`, `mesh_attribute` (vertex and face colours) and
+//! `rawconstant`. Each texture
 //! goes into the scene's table once (a referenced one is shared, as are decoded images).
 use super::Builder;
-use crate::mitsuba::xml::{ChildKind, Obj};
+use crate::mitsuba::xml::{ChildKind, Obj, Value};
 use crate::{Bitmap, FilterType, Param, Rgb, Texture, TextureId, WrapMode};
-use glam::{Affine2, DMat4, Mat2, Vec2};
+use glam::{Affine2, DMat4, DVec3, Mat2, Vec2};
 
 impl<'t> Builder<'t> {
     /// The texture filling parameter `name` of `o`, nested or referenced: `None` when there is
@@ -71,13 +72,13 @@ impl<'t> Builder<'t> {
                 })
             }
             "mesh_attribute" => match self.string(t, "name") {
-                Some(("vertex_color", _)) => Some(Texture::MeshAttribute {
-                    name: "vertex_color".into(),
-                }),
+                Some((name @ ("vertex_color" | "face_color"), _)) => {
+                    Some(Texture::MeshAttribute { name: name.into() })
+                }
                 Some((other, at)) => {
                     self.error(
                         at,
-                        format!("{}: attribute \"{other}\" is not supported (eyeadapt meshes carry vertex_color only)", t.describe()),
+                        format!("{}: attribute \"{other}\" is not supported (eyeadapt meshes carry vertex_color and face_color only)", t.describe()),
                     );
                     None
                 }
@@ -89,17 +90,56 @@ impl<'t> Builder<'t> {
                     None
                 }
             },
+            "rawconstant" => self.raw_constant(t),
             _ => {
                 self.error(
                     t.at,
                     format!(
-                        "unsupported {}: eyeadapt supports texture plugins bitmap, checkerboard and mesh_attribute",
+                        "unsupported {}: eyeadapt supports texture plugins bitmap, checkerboard, mesh_attribute and rawconstant",
                         t.describe()
                     ),
                 );
                 None
             }
         }
+    }
+
+    /// `rawconstant`: `value`, a number or a 3-vector, used as it is (no colour conversion).
+    fn raw_constant(&mut self, t: &'t Obj) -> Option<Texture> {
+        let Some(p) = self.prop(t, "value") else {
+            self.error(
+                t.at,
+                format!(
+                    "{} needs a <float> or <vector name=\"value\">",
+                    t.describe()
+                ),
+            );
+            return None;
+        };
+        let value = match &p.value {
+            Value::Float(x) => DVec3::splat(*x),
+            Value::Integer(i) => DVec3::splat(*i as f64),
+            Value::Vector(v) | Value::Point(v) | Value::Rgb(v) => *v,
+            _ => {
+                self.wrong_type(t, p, "a <float> or <vector>");
+                return None;
+            }
+        };
+        // Mitsuba checks nothing; eyeadapt's textures are colours and numbers >= 0.
+        if let Err(problem) = crate::check_colour(value.as_vec3()) {
+            self.error(
+                p.at,
+                format!(
+                    "parameter `value` of {} is {:?}: it {problem}",
+                    t.describe(),
+                    value.to_array()
+                ),
+            );
+            return None;
+        }
+        Some(Texture::Constant {
+            value: value.as_vec3(),
+        })
     }
 
     fn bitmap(&mut self, t: &'t Obj) -> Option<Bitmap> {
