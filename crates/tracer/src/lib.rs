@@ -25,6 +25,7 @@ mod light_pick;
 mod lights;
 mod material;
 mod microfacet;
+mod panes;
 mod path_state;
 mod sampler;
 mod scene_data;
