@@ -129,4 +129,29 @@ mod tests {
                 .contains("cornell-box")
         );
     }
+
+    #[test]
+    fn the_interior_reads_its_embedded_images_as_the_files_on_disk() {
+        let built = load_builtin("interior").unwrap();
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/interior");
+        let disk = crate::load_scene_file(&dir.join("scene.toml")).unwrap();
+        let (a, b) = (
+            built.environment_map.as_ref().unwrap(),
+            disk.environment_map.as_ref().unwrap(),
+        );
+        assert_eq!((a.image.width, a.image.height), (256, 128));
+        assert_eq!(a.image, b.image);
+        assert_eq!(a.scale, b.scale);
+        let images = |s: &Scene| -> Vec<crate::Image> {
+            s.textures
+                .iter()
+                .filter_map(|t| match t {
+                    crate::Texture::Bitmap(b) => Some(b.image.as_ref().clone()),
+                    _ => None,
+                })
+                .collect()
+        };
+        assert_eq!(images(&built).len(), 2);
+        assert_eq!(images(&built), images(&disk));
+    }
 }
