@@ -1,13 +1,27 @@
 //! Built-in scenes, usable wherever a scene path is (`builtin:NAME`), from any directory.
-//! Scene files without external meshes are embedded in the binary; procedural scenes are
-//! generated in code.
-use crate::{Scene, SceneError, load_scene_str};
+//! Their scene files are embedded in the binary, with the images they name (the interior's
+//! sky and floor, written by its `gen.py`).
+use crate::{ImageCache, Scene, SceneError, load_scene_str_with, scene_dir};
 use std::path::Path;
 
 /// (name, one-line description) of every built-in scene.
 pub fn builtin_scenes() -> Vec<(&'static str, &'static str)> {
     EMBEDDED.iter().map(|(n, d, _)| (*n, *d)).collect()
 }
+
+/// Files a built-in scene names, by the name it uses: (scene, file name, bytes).
+const EMBEDDED_FILES: &[(&str, &str, &[u8])] = &[
+    (
+        "interior",
+        "sky.png",
+        include_bytes!("../../../scenes/interior/sky.png"),
+    ),
+    (
+        "interior",
+        "planks.png",
+        include_bytes!("../../../scenes/interior/planks.png"),
+    ),
+];
 
 const EMBEDDED: &[(&str, &str, &str)] = &[
     (
@@ -50,12 +64,26 @@ const EMBEDDED: &[(&str, &str, &str)] = &[
         "paper case 5 (Fig. 10-12): room 1 lit by four orange lights, room 2 by four blue",
         include_str!("../../../scenes/two-rooms/scene.toml"),
     ),
+    (
+        "interior",
+        "a sunlit room (sky and sun through glass panes, plank floor, a glass ball) and a lamp-lit one; 5 s walk",
+        include_str!("../../../scenes/interior/scene.toml"),
+    ),
 ];
 
 /// Loads `builtin:NAME`.
 pub fn load_builtin(name: &str) -> Result<Scene, SceneError> {
     match EMBEDDED.iter().find(|(n, _, _)| *n == name) {
-        Some((n, _, text)) => load_scene_str(text, Path::new(&format!("builtin:{n}"))),
+        Some((n, _, text)) => {
+            let path = format!("builtin:{n}");
+            let path = Path::new(&path);
+            let dir = scene_dir(path);
+            let files = EMBEDDED_FILES
+                .iter()
+                .filter(|(scene, _, _)| scene == n)
+                .map(|(_, file, bytes)| (dir.join(file), *bytes));
+            load_scene_str_with(text, path, ImageCache::with_embedded(files))
+        }
         None => Err(SceneError {
             diagnostics: vec![crate::Diagnostic {
                 severity: crate::Severity::Error,
@@ -100,5 +128,30 @@ mod tests {
                 .to_string()
                 .contains("cornell-box")
         );
+    }
+
+    #[test]
+    fn the_interior_reads_its_embedded_images_as_the_files_on_disk() {
+        let built = load_builtin("interior").unwrap();
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/interior");
+        let disk = crate::load_scene_file(&dir.join("scene.toml")).unwrap();
+        let (a, b) = (
+            built.environment_map.as_ref().unwrap(),
+            disk.environment_map.as_ref().unwrap(),
+        );
+        assert_eq!((a.image.width, a.image.height), (256, 128));
+        assert_eq!(a.image, b.image);
+        assert_eq!(a.scale, b.scale);
+        let images = |s: &Scene| -> Vec<crate::Image> {
+            s.textures
+                .iter()
+                .filter_map(|t| match t {
+                    crate::Texture::Bitmap(b) => Some(b.image.as_ref().clone()),
+                    _ => None,
+                })
+                .collect()
+        };
+        assert_eq!(images(&built).len(), 2);
+        assert_eq!(images(&built), images(&disk));
     }
 }

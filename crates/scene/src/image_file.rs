@@ -26,9 +26,19 @@ pub const MAX_TEXELS: u64 = 1 << 28;
 pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
     let file = crate::open_input(path)
         .map_err(|e| format!("cannot read image {}: {e}", path.display()))?;
+    decode_image(std::io::BufReader::new(file), path, raw)
+}
+
+/// Decodes an image file's bytes read from `input`; `path` names it (and its extension the
+/// format) in messages.
+fn decode_image(
+    input: impl std::io::BufRead + std::io::Seek,
+    path: &Path,
+    raw: bool,
+) -> Result<Image, String> {
     // The extension names the format (as `ImageReader::open` does) unless the content says
     // otherwise.
-    let mut reader = ImageReader::new(std::io::BufReader::new(file));
+    let mut reader = ImageReader::new(input);
     if let Ok(format) = image::ImageFormat::from_path(path) {
         reader.set_format(format);
     }
@@ -84,18 +94,33 @@ pub fn load_image(path: &Path, raw: bool) -> Result<Image, String> {
     })
 }
 
-/// Decoded images by (file, raw), so every texture naming a file shares one copy.
+/// Decoded images by (file, raw), so every texture naming a file shares one copy; files
+/// embedded in the binary (the built-in scenes' images) are read from memory instead.
 #[derive(Default)]
-pub struct ImageCache(HashMap<(PathBuf, bool), Arc<Image>>);
+pub struct ImageCache {
+    decoded: HashMap<(PathBuf, bool), Arc<Image>>,
+    embedded: HashMap<PathBuf, &'static [u8]>,
+}
 
 impl ImageCache {
+    /// A cache in which `files` (path, bytes) stand for the files at those paths.
+    pub fn with_embedded(files: impl IntoIterator<Item = (PathBuf, &'static [u8])>) -> Self {
+        ImageCache {
+            decoded: HashMap::new(),
+            embedded: files.into_iter().collect(),
+        }
+    }
+
     pub fn get(&mut self, path: &Path, raw: bool) -> Result<Arc<Image>, String> {
         let key = (path.to_path_buf(), raw);
-        if let Some(img) = self.0.get(&key) {
+        if let Some(img) = self.decoded.get(&key) {
             return Ok(img.clone());
         }
-        let img = Arc::new(load_image(path, raw)?);
-        self.0.insert(key, img.clone());
+        let img = Arc::new(match self.embedded.get(path) {
+            Some(bytes) => decode_image(std::io::Cursor::new(*bytes), path, raw)?,
+            None => load_image(path, raw)?,
+        });
+        self.decoded.insert(key, img.clone());
         Ok(img)
     }
 }

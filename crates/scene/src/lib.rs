@@ -66,6 +66,7 @@ pub use crate::scene::{RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
 pub use crate::toml_scene::{load_scene, load_scene_str};
+pub(crate) use crate::toml_scene::{load_scene_str_with, scene_dir};
 pub use crate::track::{Interpolation, Track, TrackValue};
 pub use crate::transform::Transform;
 

@@ -15,7 +15,8 @@
 //! By default every frame uses the same random numbers (common random numbers), so Monte-Carlo
 //! noise does not turn into frame-to-frame jitter of the adaptation colour.
 use crate::film::View;
-use crate::integrator::{Origin, PathSettings, power_heuristic, trace, visible};
+use crate::integrator::{Origin, PathSettings, power_heuristic, trace};
+use crate::panes::shadow_transmittance;
 use crate::sampler::{SampleStream, hash_key};
 use crate::scene_data::SceneData;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
@@ -135,16 +136,20 @@ pub fn eye_sensor_until(
         if let Some(ls) = scene.lights.sample(eye, None, u_pick, u_light) {
             let cos = ls.wi.dot(axis);
             let k = (1.0 + cos) * 0.25;
-            if k > 0.0
-                && (!settings.fov_only || view.in_frustum(basis, ls.wi))
-                && visible(scene, &mut scene.geometry.scratch(), eye, ls.wi, ls.dist)
-            {
+            let seen = k > 0.0 && (!settings.fov_only || view.in_frustum(basis, ls.wi));
+            // Through thin panes (a sun behind a window) with their transmittance.
+            let tr = if seen {
+                shadow_transmittance(scene, &mut scene.geometry.scratch(), eye, ls.wi, ls.dist)
+            } else {
+                Vec3A::ZERO
+            };
+            if tr.max_element() > 0.0 {
                 let w = if ls.delta {
                     1.0
                 } else {
                     power_heuristic(ls.pdf, k / PI)
                 };
-                x += ls.li * (k * w / ls.pdf);
+                x += ls.li * tr * (k * w / ls.pdf);
             }
         }
         // A cardioid-distributed path.
@@ -279,8 +284,10 @@ pub fn eye_direct_per_light(
             let wi = d / d2.sqrt();
             let cos_l = -a.n.dot(wi);
             let kern = (1.0 + wi.dot(axis)) * 0.25;
-            if cos_l > 0.0 && kern > 0.0 && visible(scene, &mut scratch, eye, wi, d2.sqrt()) {
-                sum += (luminance(a.radiance(b1, b2, &lights.textures)) * kern * cos_l / d2) as f64;
+            if cos_l > 0.0 && kern > 0.0 {
+                let tr = shadow_transmittance(scene, &mut scratch, eye, wi, d2.sqrt());
+                let radiance = a.radiance(b1, b2, &lights.textures);
+                sum += (luminance(radiance * tr) * kern * cos_l / d2) as f64;
             }
         }
         out.push((*emission, sum * *total_area as f64 / samples.max(1) as f64));
@@ -289,8 +296,9 @@ pub fn eye_direct_per_light(
         let v = match l.arrival(eye, crate::beam::Lookup::Texture(&lights.textures)) {
             Some(a) => {
                 let kern = (1.0 + a.wi.dot(axis)) * 0.25;
-                if kern > 0.0 && visible(scene, &mut scratch, eye, a.wi, a.dist) {
-                    (luminance(a.li) * kern) as f64
+                if kern > 0.0 {
+                    let tr = shadow_transmittance(scene, &mut scratch, eye, a.wi, a.dist);
+                    (luminance(a.li * tr) * kern) as f64
                 } else {
                     0.0
                 }
@@ -308,8 +316,9 @@ pub fn eye_direct_per_light(
                 continue;
             };
             let kern = (1.0 + s.wi.dot(axis)) * 0.25;
-            if kern > 0.0 && visible(scene, &mut scratch, eye, s.wi, f32::INFINITY) {
-                sum += (luminance(s.li) * kern / s.pdf) as f64;
+            if kern > 0.0 {
+                let tr = shadow_transmittance(scene, &mut scratch, eye, s.wi, f32::INFINITY);
+                sum += (luminance(s.li * tr) * kern / s.pdf) as f64;
             }
         }
         out.push((env.mean(), sum / samples.max(1) as f64));

@@ -27,6 +27,7 @@ mod light_pick;
 mod lights;
 mod material;
 mod microfacet;
+mod panes;
 mod path_state;
 mod pplastic;
 mod principled;

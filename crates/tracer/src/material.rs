@@ -182,6 +182,14 @@ impl Materials {
         (Leaf(e), u_lobe)
     }
 
+    /// True when some material is a thin pane (`panes.rs`).
+    pub fn has_thin_panes(&self) -> bool {
+        self.entries
+            .iter()
+            .chain(&self.nodes)
+            .any(|e| matches!(e.bsdf, SceneBsdf::ThinDielectric { .. }))
+    }
+
     /// Index of the error material (for instances without one).
     pub fn error_index(&self) -> u32 {
         self.entries.len() as u32 - 1

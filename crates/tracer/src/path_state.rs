@@ -17,10 +17,12 @@ use crate::bsdf::{Bsdf, BsdfSample};
 use crate::bump::Terminator;
 use crate::geometry::RayScratch;
 use crate::integrator::{
-    Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic, visible,
+    Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic,
 };
 use crate::interaction::SurfaceInteraction;
 use crate::lights::LightSet;
+use crate::microfacet::fresnel_refract;
+use crate::panes::{is_pane, shadow_transmittance};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
 use glam::Vec3A;
@@ -70,6 +72,8 @@ pub struct Vertex {
     /// Ray origins just off the surface on the viewer's side and behind it.
     p_front: Vec3A,
     p_back: Vec3A,
+    /// A thin pane that shadow rays pass, in a scene that has them (`panes.rs`).
+    pane: bool,
 }
 
 /// The random numbers of one vertex, in the sample stream's fixed order.
@@ -83,6 +87,20 @@ pub struct VertexSamples {
 }
 
 impl VertexSamples {
+    /// Numbers for a vertex that only a shadow ray sees (a pane, `panes.rs`): nothing is
+    /// sampled there, and a blend's child is the one at the middle of its weight interval.
+    #[inline]
+    pub(crate) fn middle() -> VertexSamples {
+        VertexSamples {
+            pick: 0.5,
+            lobe: 0.5,
+            rr: 0.5,
+            mask: 0.5,
+            bsdf: [0.5; 2],
+            light_next: [0.5; 2],
+        }
+    }
+
     #[inline]
     pub fn draw(s: &mut SampleStream) -> VertexSamples {
         let pick = s.next_1d();
@@ -121,13 +139,15 @@ impl Vertex {
         } else {
             Frame::new(ns)
         };
+        let opacity = scene.materials.opacity(leaf, si);
         Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
+            pane: scene.thin_panes && is_pane(&bsdf, opacity),
             // Principled lobes turn their own anisotropy to ∂p/∂u (`Bsdf::oriented`).
             bsdf: bsdf.oriented(&frame, si.dpdu),
-            opacity: scene.materials.opacity(leaf, si),
+            opacity,
             lobe,
             terminator,
             p_front: offset(si.p, ng),
@@ -139,6 +159,25 @@ impl Vertex {
     #[inline]
     fn shadowing(&self, wi: Vec3A) -> f32 {
         self.terminator.map_or(1.0, |t| t.factor(wi))
+    }
+
+    /// The share of light a pane passes straight on towards the viewer (its transmittance
+    /// times 1 − 2R/(1 + R), as `sample_thin` transmits), or `None` when this is no pane.
+    #[inline]
+    pub(crate) fn pane_transmittance(&self) -> Option<Vec3A> {
+        match self.bsdf {
+            Bsdf::ThinDielectric { eta, t, .. } if self.pane => {
+                let f = fresnel_refract(self.wo_l.z, eta).0;
+                Some(t * (1.0 - 2.0 * f / (1.0 + f)))
+            }
+            _ => None,
+        }
+    }
+
+    /// The ray origin just behind the surface (seen from the viewer).
+    #[inline]
+    pub(crate) fn behind(&self) -> Vec3A {
+        self.p_back
     }
 
     /// The ray origin for leaving along `wi`, and whether that side is the viewer's.
@@ -257,11 +296,15 @@ impl PathState {
             return;
         }
         let wi_l = v.frame.to_local(ls.wi);
-        // Shadow rays treat every surface as opaque, as Mitsuba's path integrator does; light
-        // through glass or a mask's holes arrives by BSDF sampling.
+        // Shadow rays pass thin panes (panes.rs) and stop at every other surface, as Mitsuba's
+        // path integrator does; light through glass or a mask's holes arrives by BSDF sampling.
         let f_surface = v.bsdf.eval(v.wo_l, wi_l) * v.shadowing(ls.wi);
         let f = f_surface * v.opacity;
-        if f.max_element() <= 0.0 || !visible(scene, scratch, from, ls.wi, ls.dist) {
+        if f.max_element() <= 0.0 {
+            return;
+        }
+        let tr = shadow_transmittance(scene, scratch, from, ls.wi, ls.dist);
+        if tr.max_element() <= 0.0 {
             return;
         }
         let w = if ls.delta {
@@ -269,7 +312,7 @@ impl PathState {
         } else {
             power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l) * v.opacity)
         };
-        let c = self.beta * f * ls.li * (wi_l.z.abs() * w / ls.pdf);
+        let c = self.beta * f * ls.li * tr * (wi_l.z.abs() * w / ls.pdf);
         if self.specular_chain {
             self.out.l += c;
             // The surface's own BSDF, not its mask's share: the irradiance of a half-transparent
@@ -324,6 +367,13 @@ impl PathState {
         }
         self.beta *= bs.weight;
         self.u_light = u.light_next;
+        if v.pane && bs.wi.z < 0.0 {
+            // Straight through a pane: shadow rays cross it too, so the path keeps the last
+            // scattering vertex's pdf, origin and normal for MIS, and its segment count.
+            self.o = from;
+            self.d = wi;
+            return true;
+        }
         self.prev = if bs.delta {
             Origin::Camera
         } else {

@@ -11,6 +11,8 @@ pub struct SceneData {
     pub geometry: Geometry,
     pub materials: Materials,
     pub lights: LightSet,
+    /// Some material is a thin pane, which shadow rays pass (`panes.rs`).
+    pub thin_panes: bool,
     /// Centre and radius of the bounding sphere of all geometry.
     pub center: Vec3A,
     pub radius: f32,
@@ -36,10 +38,12 @@ impl SceneData {
             scene.environment_map.as_ref(),
         );
         let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures);
+        let thin_panes = materials.has_thin_panes();
         SceneData {
             geometry,
             materials,
             lights,
+            thin_panes,
             center,
             radius,
         }

@@ -35,6 +35,16 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 
 /// Loads a scene from TOML text; `path` names it in messages and anchors relative paths.
 pub fn load_scene_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    load_scene_str_with(text, path, ImageCache::default())
+}
+
+/// [`load_scene_str`] with images taken from `images` first (a built-in scene's embedded
+/// files, keyed by the paths the scene's relative names resolve to).
+pub(crate) fn load_scene_str_with(
+    text: &str,
+    path: &Path,
+    images: ImageCache,
+) -> Result<Scene, SceneError> {
     let map = SourceMap { file: path, text };
     let raw: SceneFile = toml::from_str(text).map_err(|e| SceneError {
         diagnostics: vec![toml_error(&map, &e)],
@@ -42,9 +52,9 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
     let mut cx = Ctx {
         map,
         diags: Vec::new(),
-        dir: path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        dir: scene_dir(path),
         textures: HashMap::new(),
-        images: ImageCache::default(),
+        images,
         named_shapes: HashMap::new(),
     };
     let scene = cx.scene(raw);
@@ -59,6 +69,11 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
             diagnostics: errors.into_iter().chain(warnings).collect(),
         })
     }
+}
+
+/// The directory a scene's relative file names are resolved in.
+pub(crate) fn scene_dir(path: &Path) -> PathBuf {
+    path.parent().unwrap_or(Path::new(".")).to_path_buf()
 }
 
 pub(crate) fn toml_error(map: &SourceMap, e: &toml::de::Error) -> Diagnostic {
