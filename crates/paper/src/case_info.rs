@@ -17,8 +17,12 @@ pub struct CaseInfo {
     /// Quick variant, and the full variant's sensitivity runs: (width, height, spp) per job.
     pub quick: &'static [(u32, u32, u32)],
     pub study: &'static [(u32, u32, u32)],
+    /// The full variant's main run, when smaller than the jobs' own sizes (`None`: the jobs').
+    pub full: Option<&'static [(u32, u32, u32)]>,
     /// Eye-sensor paths per frame in the quick variant (the full one uses the job's).
     pub quick_eye: u32,
+    /// Eye-sensor paths per frame in the full variant's study runs (`None`: the job's).
+    pub study_eye: Option<u32>,
 }
 
 /// (name, job text, scene template).
@@ -38,7 +42,9 @@ pub const CASES: &[CaseInfo] = &[
         )],
         quick: &[(64, 64, 16)],
         study: &[(64, 64, 16)],
+        full: None,
         quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 2,
@@ -59,7 +65,9 @@ pub const CASES: &[CaseInfo] = &[
         ],
         quick: &[(64, 48, 16), (64, 48, 16)],
         study: &[(64, 48, 16), (64, 48, 16)],
+        full: None,
         quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 3,
@@ -74,8 +82,10 @@ pub const CASES: &[CaseInfo] = &[
             )),
         )],
         quick: &[(128, 128, 8)],
-        study: &[(128, 128, 16)],
+        study: &[(128, 128, 8)],
+        full: None,
         quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 4,
@@ -90,8 +100,10 @@ pub const CASES: &[CaseInfo] = &[
             )),
         )],
         quick: &[(96, 72, 16)],
-        study: &[(128, 96, 32)],
+        study: &[(96, 72, 16)],
+        full: None,
         quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 5,
@@ -105,7 +117,9 @@ pub const CASES: &[CaseInfo] = &[
         )],
         quick: &[(96, 72, 16)],
         study: &[(96, 72, 16)],
+        full: None,
         quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 6,
@@ -118,7 +132,11 @@ pub const CASES: &[CaseInfo] = &[
             Some(include_str!("../../../paper/scenes/case6-three-rooms.toml")),
         )],
         quick: &[(64, 36, 2)],
-        study: &[(96, 54, 4)],
+        // 121 frames: the full variant's main run at half the job's size, its 24 study runs
+        // smaller still, so that `eyeadapt paper` finishes in well under an hour on 2 busy cores.
+        study: &[(48, 27, 4)],
+        full: Some(&[(160, 90, 8)]),
         quick_eye: 2048,
+        study_eye: Some(4096),
     },
 ];

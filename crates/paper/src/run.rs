@@ -48,7 +48,7 @@ pub fn run_case(number: u32, o: &PaperOptions) -> Result<CaseReport, Failure> {
     let main_spec = RunSpec {
         config: &configs[0],
         seed: o.seed,
-        sizes: o.quick.then_some(case.quick),
+        sizes: if o.quick { Some(case.quick) } else { case.full },
         eye_samples: eye,
         write_files: true,
         verbose: o.verbose,
@@ -72,7 +72,11 @@ pub fn run_case(number: u32, o: &PaperOptions) -> Result<CaseReport, Failure> {
                     config,
                     seed,
                     sizes: Some(if o.quick { case.quick } else { case.study }),
-                    eye_samples: eye,
+                    eye_samples: if o.quick {
+                        eye
+                    } else {
+                        o.eye_samples.or(case.study_eye)
+                    },
                     write_files: false,
                     verbose: false,
                 };

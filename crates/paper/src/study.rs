@@ -321,6 +321,43 @@ mod tests {
     }
 
     #[test]
+    fn every_configuration_fills_its_templates_into_a_scene_that_loads() {
+        for case in crate::CASES {
+            for quick in [true, false] {
+                let (_, configs) = case_grid(case.number, quick);
+                for c in &configs {
+                    for (name, job, scene) in case.jobs {
+                        let job = crate::shot::fill_template(job, c, name).unwrap();
+                        assert!(job.contains("scene ="), "{name}");
+                        if let Some(t) = scene {
+                            let text = crate::shot::fill_template(t, c, name).unwrap();
+                            let path = std::path::Path::new("scene.toml");
+                            if let Err(e) = eyeadapt_scene::load_scene_str(&text, path) {
+                                panic!("case {} {:?}: {e:?}", case.number, c.labels);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_unfilled_placeholder_is_an_error_naming_it() {
+        let c = Config {
+            levels: vec![],
+            labels: vec![],
+            fill: vec![("a", "1".into())],
+        };
+        assert_eq!(
+            crate::shot::fill_template("x = {{a}}", &c, "t").unwrap(),
+            "x = 1"
+        );
+        let e = crate::shot::fill_template("x = {{b}}", &c, "t").unwrap_err();
+        assert!(format!("{e}").contains("{{b}}"), "{e}");
+    }
+
+    #[test]
     fn every_case_has_a_grid() {
         for n in 1..=6 {
             for q in [true, false] {

@@ -264,7 +264,7 @@ mod tests {
     #[test]
     fn verdict_text_states_the_requirement_and_the_signed_margin_not_a_false_inequality() {
         // The audit's example: eye 5.33 and WCAM 5.31, claim "eye below WCAM".
-        let v = decide(&[run(5.33 - 5.31)]);
+        let v = decide(&[run(0.0199), run(0.02), run(0.0201)]);
         let text = v[0].test();
         assert_eq!(v[0].outcome, Outcome::DoesNotHold);
         assert!(text.contains("needs < 0"), "{text}");
@@ -273,7 +273,8 @@ mod tests {
     }
 
     #[test]
-    fn an_undefined_value_does_not_hold() {
+    fn one_seed_cannot_decide_and_an_undefined_value_does_not_hold() {
+        assert_eq!(decide(&[run(-1.0)])[0].outcome, Outcome::WithinNoise);
         assert_eq!(decide(&[run(f64::NAN)])[0].outcome, Outcome::DoesNotHold);
     }
 

@@ -127,14 +127,14 @@ impl Table {
 
 fn setup_line(run: &JobRun) -> String {
     let j = &run.job;
+    let source = j.scene.source.display().to_string();
+    let files = match source.strip_prefix("builtin:") {
+        Some(b) => format!("`configs/{}.toml` over `builtin:{b}`", run.name),
+        // A template of paper/scenes/, filled (the work directory holds the filled files).
+        None => "the job and scene templates of `paper/scenes/`, baseline configuration".into(),
+    };
     format!(
-        "`configs/{}.toml` over `builtin:{}`: {}×{}, {} spp, max_depth {}, {} eye-sensor paths per frame, {} frame(s), CAT02 with D = {}.",
-        run.name,
-        j.scene
-            .source
-            .display()
-            .to_string()
-            .trim_start_matches("builtin:"),
+        "{files}: {}×{}, {} spp, max_depth {}, {} eye-sensor paths per frame, {} frame(s), CAT02 with D = {}.",
         j.width,
         j.height,
         j.spp,
