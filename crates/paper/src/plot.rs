@@ -23,7 +23,15 @@ fn esc(s: &str) -> String {
 pub fn sensitivity_svg(case: &CaseInfo, st: &Study) -> String {
     let claims: Vec<String> = st.baseline().iter().map(|v| v.claim.clone()).collect();
     let np = st.params.len().max(1);
-    let width = PAD + np as f64 * (PANEL_W + PAD);
+    // Wide enough for the panels, the title and the legend's longest line (≈ 6 px a character).
+    let legend_w = claims
+        .iter()
+        .enumerate()
+        .map(|(i, c)| 6.0 * (c.chars().count() + st.robustness(i).chars().count() + 8) as f64)
+        .fold(0.0, f64::max);
+    let width = (PAD + np as f64 * (PANEL_W + PAD))
+        .max(PAD + 18.0 + legend_w)
+        .max(760.0);
     let legend_y = PAD + PANEL_H + 50.0;
     let height = legend_y + 18.0 * claims.len() as f64 + 20.0;
     let mut s = String::new();
