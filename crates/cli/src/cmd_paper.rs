@@ -28,17 +28,16 @@ pub fn run(a: PaperArgs) -> Result<(), Failure> {
     };
     let r = eyeadapt_paper::run(&o)?;
     for c in &r.cases {
-        for v in &c.verdicts {
+        for (i, v) in c.verdicts.iter().enumerate() {
             println!(
-                "case {} {}: {} — {}",
+                "case {} {:<13}: {} — {}{}",
                 c.info.number,
-                if v.holds {
-                    "holds        "
-                } else {
-                    "DOES NOT HOLD"
-                },
+                v.outcome.label(),
                 v.claim,
-                v.test
+                v.test(),
+                c.study
+                    .as_ref()
+                    .map_or(String::new(), |st| format!(" [{}]", st.robustness(i)))
             );
         }
         if let Some(s) = &c.sheet {

@@ -1,4 +1,5 @@
-//! The six test cases: their job files (embedded) and quick-variant sizes.
+//! The six test cases: their job files and scene templates (embedded) and the sizes of the
+//! quick variant and of the sensitivity runs.
 
 /// One test case of the paper.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -9,11 +10,23 @@ pub struct CaseInfo {
     pub title: &'static str,
     /// The paper's figures.
     pub figures: &'static str,
-    /// Job files (embedded `configs/<name>.toml`), rendered in this order.
-    pub jobs: &'static [(&'static str, &'static str)],
-    /// Quick variant: (width, height, spp) per job.
+    /// Jobs, rendered in this order: (name, job text, scene template). Without a template the
+    /// job names its scene itself (`configs/<name>.toml`); with one (`paper/scenes/`) the job
+    /// reads `scene.toml`, the template filled with a configuration of the sensitivity study.
+    pub jobs: &'static [Job],
+    /// Quick variant, and the full variant's sensitivity runs: (width, height, spp) per job.
     pub quick: &'static [(u32, u32, u32)],
+    pub study: &'static [(u32, u32, u32)],
+    /// The full variant's main run, when smaller than the jobs' own sizes (`None`: the jobs').
+    pub full: Option<&'static [(u32, u32, u32)]>,
+    /// Eye-sensor paths per frame in the quick variant (the full one uses the job's).
+    pub quick_eye: u32,
+    /// Eye-sensor paths per frame in the full variant's study runs (`None`: the job's).
+    pub study_eye: Option<u32>,
 }
+
+/// (name, job text, scene template).
+pub type Job = (&'static str, &'static str, Option<&'static str>);
 
 /// The six cases of [GRC13] §5.
 pub const CASES: &[CaseInfo] = &[
@@ -25,8 +38,13 @@ pub const CASES: &[CaseInfo] = &[
         jobs: &[(
             "cornell-orange",
             include_str!("../../../configs/cornell-orange.toml"),
+            None,
         )],
         quick: &[(64, 64, 16)],
+        study: &[(64, 64, 16)],
+        full: None,
+        quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 2,
@@ -37,13 +55,19 @@ pub const CASES: &[CaseInfo] = &[
             (
                 "white-world-orange-light",
                 include_str!("../../../configs/white-world-orange-light.toml"),
+                None,
             ),
             (
                 "orange-world-white-light",
                 include_str!("../../../configs/orange-world-white-light.toml"),
+                None,
             ),
         ],
         quick: &[(64, 48, 16), (64, 48, 16)],
+        study: &[(64, 48, 16), (64, 48, 16)],
+        full: None,
+        quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 3,
@@ -52,9 +76,16 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 8",
         jobs: &[(
             "cornell-green-floor",
-            include_str!("../../../configs/cornell-green-floor.toml"),
+            include_str!("../../../paper/scenes/case3.job.toml"),
+            Some(include_str!(
+                "../../../paper/scenes/case3-cornell-green-floor.toml"
+            )),
         )],
-        quick: &[(128, 128, 16)],
+        quick: &[(128, 128, 8)],
+        study: &[(128, 128, 8)],
+        full: None,
+        quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 4,
@@ -63,17 +94,32 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 9",
         jobs: &[(
             "statue-red-spot",
-            include_str!("../../../configs/statue-red-spot.toml"),
+            include_str!("../../../paper/scenes/case4.job.toml"),
+            Some(include_str!(
+                "../../../paper/scenes/case4-statue-red-spot.toml"
+            )),
         )],
-        quick: &[(128, 96, 64)],
+        quick: &[(96, 72, 16)],
+        study: &[(96, 72, 16)],
+        full: None,
+        quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 5,
         slug: "case5-two-rooms",
         title: "Two rooms (orange, blue), three views",
         figures: "Fig. 10-12",
-        jobs: &[("two-rooms", include_str!("../../../configs/two-rooms.toml"))],
+        jobs: &[(
+            "two-rooms",
+            include_str!("../../../configs/two-rooms.toml"),
+            None,
+        )],
         quick: &[(96, 72, 16)],
+        study: &[(96, 72, 16)],
+        full: None,
+        quick_eye: 4096,
+        study_eye: None,
     },
     CaseInfo {
         number: 6,
@@ -82,8 +128,15 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 13-15",
         jobs: &[(
             "three-rooms",
-            include_str!("../../../configs/three-rooms.toml"),
+            include_str!("../../../paper/scenes/case6.job.toml"),
+            Some(include_str!("../../../paper/scenes/case6-three-rooms.toml")),
         )],
-        quick: &[(96, 54, 4)],
+        quick: &[(64, 36, 2)],
+        // 121 frames: the full variant's main run at half the job's size, its 24 study runs
+        // smaller still, so that `eyeadapt paper` finishes in well under an hour on 2 busy cores.
+        study: &[(48, 27, 4)],
+        full: Some(&[(160, 90, 8)]),
+        quick_eye: 2048,
+        study_eye: Some(4096),
     },
 ];

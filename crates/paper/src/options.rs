@@ -64,9 +64,9 @@ impl PaperOptions {
 pub fn variant_description(o: &PaperOptions) -> String {
     let mut s = String::new();
     s.push_str(if o.quick {
-        "quick variant (`eyeadapt paper --quick`): small images, few samples; the numbers are noisier than the full run's"
+        "quick variant (`eyeadapt paper --quick`): small images, few samples and eye-sensor paths, a reduced study with 3 seeds per configuration; the numbers are noisier than the full run's"
     } else {
-        "full variant (`eyeadapt paper`): the job files' resolutions and sample counts"
+        "full variant (`eyeadapt paper`): tables from the job files' resolutions and sample counts, verdicts from the sensitivity study at reduced sizes with 4 seeds per configuration"
     });
     s.push_str(&format!(", seed {}", o.seed));
     if let Some(n) = o.eye_samples {

@@ -1,16 +1,9 @@
 //! What a case found: its claims' verdicts, numbers and write-up.
 use crate::case_info::CaseInfo;
+use crate::study::Study;
+use crate::verdict::{ClaimRun, Outcome, Verdict};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-
-/// One claim of the paper and whether the measurement supports it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Verdict {
-    pub claim: String,
-    /// The operational test applied, with the measured values.
-    pub test: String,
-    pub holds: bool,
-}
 
 /// The outcome of one case.
 #[derive(Clone, Debug)]
@@ -22,9 +15,16 @@ pub struct CaseReport {
     pub markdown: String,
     /// Named numbers for tests and tools, e.g. `eye.duv_light`, `orange.eye.hue`.
     pub metrics: BTreeMap<String, f64>,
+    /// The claims' checks on this run's numbers (one seed, one configuration).
+    pub claims: Vec<ClaimRun>,
+    /// The claims decided on the baseline configuration over the study's seeds.
     pub verdicts: Vec<Verdict>,
+    /// The sensitivity study (every configuration, every seed).
+    pub study: Option<Study>,
     /// Contact-sheet file name (relative to the output directory).
     pub sheet: Option<String>,
+    /// Sensitivity plot file name (SVG, relative to the output directory).
+    pub plot: Option<String>,
 }
 
 impl CaseReport {
@@ -40,8 +40,9 @@ impl CaseReport {
         }
     }
 
+    /// Every claim holds on the baseline over the seeds.
     pub fn all_hold(&self) -> bool {
-        self.verdicts.iter().all(|v| v.holds)
+        !self.verdicts.is_empty() && self.verdicts.iter().all(|v| v.outcome == Outcome::Holds)
     }
 }
 

@@ -1,65 +1,11 @@
-//! RESULTS.md: the paper's claims, the measured numbers, the verdicts, and — where a claim does
-//! not reproduce — what was investigated. Deterministic: no timestamps, timings or paths that
-//! depend on the machine.
+//! RESULTS.md: the paper's claims, the measured numbers, the verdicts with their margins and
+//! standard errors, and each claim's robustness over the sensitivity study. Deterministic: no
+//! timestamps, timings or paths that depend on the machine.
 use super::{CaseReport, PaperOptions, variant_description};
+use crate::study::Study;
+use crate::verdict::Outcome;
 use std::fmt::Write;
 use std::path::Path;
-
-/// Investigation notes, shown under a case when the named claim does not hold. Written after
-/// looking at the full run; they explain, they do not excuse (the scenes were not tuned).
-fn failure_note(case: u32, claim_index: usize) -> Option<&'static str> {
-    match (case, claim_index) {
-        (3, 1) => Some(
-            "The eye sensor reads a white that is greener than the light the wall above the checker receives \
-             (compare the columns \"Δu′v′ to D65\" and \"Δu′v′ to the wall's irradiance\"), so it over-corrects \
-             like WCAM and the two whites nearly coincide. The camera and its sensor sit in front of the open box; \
-             the cardioid gives the bright green floor, which fills the lower part of the view, a weight close to \
-             1, while the back wall receives the floor's light at grazing angles. `eye_fov` equals `eye` here: \
-             the box opens onto a black void, so the part of the sensor outside the field of view has nothing to \
-             add. The paper's 132°/2 % needs a sensor reading less green than the wall's irradiance, i.e. more \
-             neutral light reaching the eye from outside the view (a closed box, white walls behind the camera) \
-             or another camera position; the paper gives neither, and the scene was not changed to find out.",
-        ),
-        (3, 2) => Some(
-            "The eye and WCAM whites nearly coincide (see above), so their adapted checkers differ by about 0.1 \
-             ΔE00 or less. The error both leave (about 5 ΔE00, largest on the light patches) is the green cast on \
-             the lower back wall where the checker hangs, stronger than on the wall above it: one white cannot \
-             remove a cast that varies across the image.",
-        ),
-        (4, 1) => Some(
-            "The statue's unlit side is not lit by white light alone. The spot's 18° beam is wider than the \
-             statue, and the red light it throws on the back wall, floor and pedestal reflects onto the statue's \
-             far side, whose irradiance (above) is about as red as WCAM's white. So WCAM renders that side \
-             neutral (hue 180° at a saturation this low is a trace of cyan), not blue. The claim needs the unlit \
-             side to receive less red than WCAM's white; the paper's spot was presumably tighter. The scene was \
-             not changed after measuring.",
-        ),
-        (4, 2) => Some(
-            "`eye` integrates the whole, mostly white-lit room, so its white stays close to D65 (the less biased \
-             estimate by Δu′v′) and it leaves both sides of the statue as red as they are physically lit — the \
-             lit side directly, the unlit side through the red interreflection described above. The measurable \
-             proxy for \"more natural\" used here (a less saturated white surface on the unlit side) therefore \
-             favours WCAM in this scene.",
-        ),
-        (6, 2) => Some(
-            "The diagnostic `wcam_without_bench` is the test of the paper's explanation: with no highlight of a \
-             light in view on the bench (see the previous note), leaving the bench out changes WCAM's white by \
-             far less than a just-noticeable difference.",
-        ),
-        (6, 1) => Some(
-            "In this walkthrough (`scenes/three-rooms`) no specular highlight of a light shows on the bench \
-             during the first second: the bench's pixels carry a few percent at most of WCAM's weighted sum, and \
-             leaving them out moves WCAM's white by a small fraction of a just-noticeable difference. From the \
-             early camera path the ceiling light's mirror direction on the bench is out of view, and a highlight \
-             of the white light among white-lit walls would barely move WCAM's chromaticity anyway. WCAM's large \
-             steps come instead where the view changes colour quickly: approaching a doorway (room 1's largest \
-             step) and crossing into room 3 (the largest overall). WCAM as reconstructed averages radiance, so a \
-             bright highlight of a differently coloured light would dominate it as the paper describes; this \
-             scene simply does not exercise that case, and it was not changed after measuring.",
-        ),
-        _ => None,
-    }
-}
 
 /// Notes shown under a case whatever the outcome.
 fn case_note(case: u32) -> Option<&'static str> {
@@ -72,11 +18,6 @@ fn case_note(case: u32) -> Option<&'static str> {
              that tells the full sensor what the illuminant is. `wcam` reads the illumination through its \
              achromatic re-render; `ncns` is undefined in the orange world (no white surface) and falls back to \
              D65.",
-        ),
-        4 => Some(
-            "The renderer picks lights for next-event estimation in proportion to their luminous power, so the \
-             saturated red spot (low luminance) is chosen for about 2 % of the shadow rays and its light is \
-             noisy at low sample counts; region means average that noise out, the previews show it as speckle.",
         ),
         _ => None,
     }
@@ -97,7 +38,8 @@ pub fn results_markdown(o: &PaperOptions, reports: &[CaseReport]) -> String {
     let _ = writeln!(
         s,
         "Generated by `eyeadapt paper`; do not edit (rerun it). {}. The same seed gives the same file, byte for byte. \
-         How every number is measured: `docs/paper.md`. Scenes: `scenes/`, jobs: `configs/`.\n",
+         How every number is measured, and every scene's design with the paper's words it follows: `docs/paper.md`. \
+         Scene templates of cases 3, 4, 6 and their jobs: `paper/scenes/`; other jobs: `configs/`.\n",
         capitalise(&variant_description(o))
     );
     s.push_str(
@@ -108,64 +50,131 @@ pub fn results_markdown(o: &PaperOptions, reports: &[CaseReport]) -> String {
          (estimators.md §2.2, §3); `eye_fov` is the eye sensor restricted to the field of view (an ablation, §1.5). \
          Contact sheets: one row per view, columns raw | WCAM | eye.\n\n",
     );
-    s.push_str("## Summary\n\n| case | claim | holds |\n|---|---|---|\n");
+    s.push_str(
+        "**How claims are decided.** Each claim is a set of checks \"value above (or below) a bound\", written before any \
+         run. Every configuration of a case's sensitivity study (what the paper's text leaves open) is rendered with \
+         several seeds; a check's value is the mean over the seeds, its uncertainty the standard error of that mean \
+         (which contains all Monte-Carlo noise, the eye sensor's included). A check **holds** when its margin exceeds \
+         t·SE (t: two-sided 95 % Student quantile for the seeds), **does not hold** when the margin is below −t·SE, and \
+         is **within noise** otherwise; a claim takes the worst outcome of its checks. The *baseline* is the design fixed \
+         from the paper's words; a claim is **robust** when it holds in at least 80 % of the configurations, **fragile** \
+         when it holds in fewer (but some), and **does not hold** when it holds in none. The tables under each case \
+         come from one run (the baseline, the variant's size, the first seed); the verdicts do not.\n\n",
+    );
+    s.push_str("## Summary\n\n| case | claim | baseline | robustness |\n|---|---|---|---|\n");
     for r in reports {
-        for v in &r.verdicts {
+        for (i, v) in r.verdicts.iter().enumerate() {
+            let rob = r.study.as_ref().map_or("–".into(), |st| st.robustness(i));
             let _ = writeln!(
                 s,
-                "| {} {} | {} | {} |",
+                "| {} {} | {} | {} | {} |",
                 r.info.number,
                 r.info.figures,
                 v.claim,
-                if v.holds { "yes" } else { "**no**" }
+                outcome_cell(v.outcome),
+                rob
             );
         }
     }
     s.push('\n');
     let results = o.results_path();
     for r in reports {
-        let _ = writeln!(
-            s,
-            "## Case {}: {} ({})\n",
-            r.info.number, r.info.title, r.info.figures
-        );
-        let _ = writeln!(s, "**Paper.** {}\n", r.paper_claim);
-        s.push_str(&r.markdown);
-        s.push_str("\n**Verdicts.**\n\n");
-        for v in &r.verdicts {
-            let _ = writeln!(
-                s,
-                "- {} — {}: {}.",
-                if v.holds {
-                    "holds"
-                } else {
-                    "**does not hold**"
-                },
-                v.claim,
-                v.test
-            );
-        }
-        s.push('\n');
-        for (i, v) in r.verdicts.iter().enumerate() {
-            if !v.holds
-                && let Some(n) = failure_note(r.info.number, i)
-            {
-                let _ = writeln!(s, "*Why \"{}\" does not hold.* {n}\n", v.claim);
-            }
-        }
-        if let Some(n) = case_note(r.info.number) {
-            let _ = writeln!(s, "*Note.* {n}\n");
-        }
-        if let Some(sheet) = &r.sheet {
-            let _ = writeln!(
-                s,
-                "![case {} contact sheet: raw | WCAM | eye]({})\n",
-                r.info.number,
-                relative_link(&results, &o.out, sheet)
-            );
-        }
+        case_section(&mut s, o, &results, r);
     }
     s
+}
+
+fn outcome_cell(o: Outcome) -> String {
+    match o {
+        Outcome::Holds => "holds".into(),
+        x => format!("**{}**", x.label()),
+    }
+}
+
+fn case_section(s: &mut String, o: &PaperOptions, results: &Path, r: &CaseReport) {
+    let _ = writeln!(
+        s,
+        "## Case {}: {} ({})\n",
+        r.info.number, r.info.title, r.info.figures
+    );
+    let _ = writeln!(s, "**Paper.** {}\n", r.paper_claim);
+    s.push_str(&r.markdown);
+    if let Some(st) = &r.study {
+        let _ = writeln!(
+            s,
+            "\n**Verdicts** (baseline configuration, {} seeds, at the study's size):\n",
+            st.seeds.len()
+        );
+        for (i, v) in r.verdicts.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "{}. {} — {}: {}. Over the study: {}.",
+                i + 1,
+                outcome_cell(v.outcome),
+                v.claim,
+                v.test(),
+                st.robustness(i)
+            );
+        }
+        sensitivity_table(s, st);
+    }
+    s.push('\n');
+    if let Some(n) = case_note(r.info.number) {
+        let _ = writeln!(s, "*Note.* {n}\n");
+    }
+    if let Some(plot) = &r.plot {
+        let _ = writeln!(
+            s,
+            "![case {} sensitivity: fraction of configurations in which each claim holds]({})\n",
+            r.info.number,
+            relative_link(results, &o.out, plot)
+        );
+    }
+    if let Some(sheet) = &r.sheet {
+        let _ = writeln!(
+            s,
+            "![case {} contact sheet: raw | WCAM | eye]({})\n",
+            r.info.number,
+            relative_link(results, &o.out, sheet)
+        );
+    }
+}
+
+/// One row per configuration: each claim's outcome (✓ holds, ✗ does not, ~ within noise).
+fn sensitivity_table(s: &mut String, st: &Study) {
+    let n = st.baseline().len();
+    let _ = writeln!(
+        s,
+        "\nSensitivity ({} configurations × {} seeds; ✓ holds, ✗ does not hold, ~ within noise; claims numbered as above):\n",
+        st.configs.len(),
+        st.seeds.len()
+    );
+    let mut head = String::from("| configuration |");
+    let mut rule = String::from("|---|");
+    for i in 0..n {
+        let _ = write!(head, " {} |", i + 1);
+        rule.push_str("---|");
+    }
+    let _ = writeln!(s, "{head}\n{rule}");
+    for (k, (c, vs)) in st.configs.iter().enumerate() {
+        let mut row = format!(
+            "| {}{} |",
+            c.describe(&st.params),
+            if k == 0 { " (baseline)" } else { "" }
+        );
+        for v in vs {
+            let _ = write!(
+                row,
+                " {} |",
+                match v.outcome {
+                    Outcome::Holds => "✓",
+                    Outcome::DoesNotHold => "✗",
+                    Outcome::WithinNoise => "~",
+                }
+            );
+        }
+        let _ = writeln!(s, "{row}");
+    }
 }
 
 fn capitalise(s: &str) -> String {

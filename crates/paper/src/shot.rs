@@ -1,9 +1,9 @@
 //! A case's jobs rendered through the frame pipeline, frame by frame, with their estimates
 //! and the case's diagnostics.
 use crate::case_info::CaseInfo;
-use crate::options::PaperOptions;
+use crate::study::{Config, WCAM_WEIGHT};
 use crate::{cases, sheet};
-use eyeadapt_color::Estimate;
+use eyeadapt_color::{Estimate, WcamWeight};
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::output::atomic_write_bytes;
@@ -48,41 +48,81 @@ impl JobRun {
     }
 }
 
-/// Loads a case's job (the embedded text is written to `<work>/<job>.toml` first, so the
-/// work directory records exactly what ran) with the variant's overrides.
+/// What one run of a case's job uses: a configuration of the study, a seed, a size.
+pub(crate) struct RunSpec<'a> {
+    pub config: &'a Config,
+    pub seed: u64,
+    /// (width, height, spp) per job of the case; `None`: the jobs' own.
+    pub sizes: Option<&'static [(u32, u32, u32)]>,
+    pub eye_samples: Option<u32>,
+    /// Write the job and scene files, the CSV and the stills' raw EXRs into the directory.
+    pub write_files: bool,
+    pub verbose: bool,
+}
+
+/// `text` with every `{{key}}` of `config` replaced by its value; an error names the first
+/// placeholder left unfilled.
+pub(crate) fn fill_template(text: &str, config: &Config, what: &str) -> Result<String, Failure> {
+    let mut s = text.to_string();
+    for (k, v) in &config.fill {
+        s = s.replace(&format!("{{{{{k}}}}}"), v);
+    }
+    match s.find("{{") {
+        Some(i) => Err(Failure::Other(format!(
+            "{what}: placeholder {} has no value in configuration {:?}",
+            &s[i..s[i..].find("}}").map_or(s.len(), |e| i + e + 2)],
+            config.labels
+        ))),
+        None => Ok(s),
+    }
+}
+
+/// Loads a case's job with the run's configuration and overrides. The job (and its filled
+/// scene template) is written to `<dir>/<job>.toml` (`<dir>/scene.toml`) first, so the work
+/// directory records exactly what ran.
 fn load_case_job(
     case: &CaseInfo,
     index: usize,
-    o: &PaperOptions,
+    spec: &RunSpec,
     dir: &Path,
 ) -> Result<Job, Failure> {
-    let (name, text) = case.jobs[index];
+    let (name, text, template) = case.jobs[index];
+    let text = fill_template(text, spec.config, name)?;
+    if let Some(t) = template {
+        let scene = fill_template(t, spec.config, &format!("{name} scene"))?;
+        atomic_write_bytes(&dir.join("scene.toml"), scene.as_bytes())?;
+    }
     let path = dir.join(format!("{name}.toml"));
     atomic_write_bytes(&path, text.as_bytes())?;
     let mut ov = JobOverrides {
-        eye_samples: o.eye_samples,
+        eye_samples: spec.eye_samples,
         ..Default::default()
     };
-    ov.sampling.seed = Some(o.seed);
-    if o.quick {
-        let (w, h, spp) = case.quick[index];
+    ov.sampling.seed = Some(spec.seed);
+    if let Some(&(w, h, spp)) = spec.sizes.and_then(|s| s.get(index)) {
         ov.sampling.width = Some(w);
         ov.sampling.height = Some(h);
         ov.sampling.spp = Some(spp);
     }
-    load_job(Some(&path), &ov)
+    let mut job = load_job(Some(&path), &ov)?;
+    if spec.config.get(WCAM_WEIGHT) == Some("power") {
+        job.estimator_config.wcam.weight = WcamWeight::Power;
+    }
+    Ok(job)
 }
 
-/// Renders every frame of one job; writes `<dir>/<job>.csv` and, for stills, the raw EXRs.
+/// Renders every frame of one job; with `spec.write_files`, writes `<dir>/<job>.csv` and, for
+/// stills, the raw EXRs.
 pub(crate) fn run_job(
     case: &CaseInfo,
     index: usize,
-    o: &PaperOptions,
+    spec: &RunSpec,
     dir: &Path,
-    keep_images: bool,
 ) -> Result<JobRun, Failure> {
     let name = case.jobs[index].0;
-    let job = load_case_job(case, index, o, dir)?;
+    let job = load_case_job(case, index, spec, dir)?;
+    // Stills keep their image for the read-outs; the walkthrough only its sheet tiles.
+    let keep_images = case.number != 6;
     let scenes = FrameScenes::new(&job.scene);
     let mut csv = String::from(eyeadapt_sequencer::adapt::CSV_HEADER);
     csv.push('\n');
@@ -107,14 +147,14 @@ pub(crate) fn run_job(
             .collect();
         let tiles = sheet::tiles(&r.image, &readings, &job.adaptation);
         let n = job.frames.len();
-        if o.verbose && (n <= 10 || f % 10 == 0 || f as usize + 1 == n) {
+        if spec.verbose && (n <= 10 || f % 10 == 0 || f as usize + 1 == n) {
             eprintln!(
                 "paper case {} {name}: frame {f} of {n} ({}x{}, {} spp) done",
                 case.number, job.width, job.height, job.spp
             );
         }
-        if keep_images {
-            let spec = WriteSpec {
+        if keep_images && spec.write_files {
+            let ws = WriteSpec {
                 layout: Layout::Prefixed(name),
                 outputs: Outputs {
                     raw_exr: true,
@@ -125,7 +165,7 @@ pub(crate) fn run_job(
                 exposure: job.exposure,
                 adaptation: &job.adaptation,
             };
-            write_images(dir, &r, &spec, |_| {})?;
+            write_images(dir, &r, &ws, |_| {})?;
         }
         let FrameResult {
             time, view, image, ..
@@ -140,6 +180,8 @@ pub(crate) fn run_job(
             diag,
         });
     }
-    atomic_write_bytes(&dir.join(format!("{name}.csv")), csv.as_bytes())?;
+    if spec.write_files {
+        atomic_write_bytes(&dir.join(format!("{name}.csv")), csv.as_bytes())?;
+    }
     Ok(JobRun { name, job, shots })
 }

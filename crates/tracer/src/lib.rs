@@ -46,8 +46,8 @@ pub use crate::distribution2d::Distribution2D;
 pub use crate::emitter::luminance;
 pub use crate::envmap::{EnvSample, Environment};
 pub use crate::eye::{
-    EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor, eye_sensor_until,
-    sample_cardioid,
+    EYE_REPLICATES, EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor,
+    eye_sensor_until, sample_cardioid,
 };
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
 pub use crate::geometry::{Geometry, Hit, RayScratch};

@@ -15,7 +15,7 @@ fn case2_region() -> Region {
 
 pub(super) fn case2(runs: &[JobRun]) -> (&'static str, Out) {
     let mut o = Out::new();
-    let mut judged: Vec<(String, bool, String)> = Vec::new();
+    let mut judged: Vec<(String, Vec<Check>)> = Vec::new();
     for (run, key, title) in [
         (&runs[0], "white", "White world, orange light (Fig. 6)"),
         (&runs[1], "orange", "Orange world, white light (Fig. 7)"),
@@ -76,41 +76,36 @@ pub(super) fn case2(runs: &[JobRun]) -> (&'static str, Out) {
                 s_ratio_cell(hsv.s, ref_hsv.s),
             ]);
             if e.name == "eye" || e.name == "wcam" {
-                let (ok, test) = if key == "white" {
-                    (hsv.s < 0.01, format!("grey wall S = {} < 1 %", pct(hsv.s)))
+                let checks = if key == "white" {
+                    vec![below("grey wall S", hsv.s, 0.01)]
                 } else {
-                    let dh = hue_diff(hsv.h, ref_hsv.h).abs();
-                    (
-                        dh <= 10.0 && hsv.s >= 0.5 * ref_hsv.s,
-                        format!(
-                            "orange wall hue {:.1}° vs {:.1}° (|Δ| = {:.1}° ≤ 10°), S {} ≥ ½·{}",
-                            hsv.h,
-                            ref_hsv.h,
-                            dh,
-                            pct(hsv.s),
-                            pct(ref_hsv.s)
+                    vec![
+                        below(
+                            "orange wall |hue − reflectance's| (°)",
+                            hue_diff(hsv.h, ref_hsv.h).abs(),
+                            10.0,
                         ),
-                    )
+                        above("orange wall S / reflectance's S", hsv.s / ref_hsv.s, 0.5),
+                    ]
                 };
-                judged.push((e.name.to_string(), ok, test));
+                judged.push((e.name.to_string(), checks));
             }
         }
         o.md.push_str(&t.render());
         o.md.push('\n');
     }
     for name in ["eye", "wcam"] {
-        let mine: Vec<&(String, bool, String)> =
-            judged.iter().filter(|(n, _, _)| n == name).collect();
-        o.verdict(
+        let checks: Vec<Check> = judged
+            .iter()
+            .filter(|(n, _)| n == name)
+            .flat_map(|(_, c)| c.iter().cloned())
+            .collect();
+        o.claim(
             &format!(
                 "{}: the reflectances are recovered in both worlds",
                 if name == "eye" { "eye" } else { "WCAM" }
             ),
-            mine.iter()
-                .map(|(_, _, t)| t.as_str())
-                .collect::<Vec<_>>()
-                .join("; "),
-            mine.iter().all(|(_, ok, _)| *ok),
+            checks,
         );
     }
     (CLAIM2, o)

@@ -197,39 +197,32 @@ fn estimator_table<'a>(
 fn verdicts(o: &mut Out) {
     let (wh, ws) = (o.metrics["wcam.wall.hue"], o.metrics["wcam.wall.sat"]);
     let (eh, esat) = (o.metrics["eye.wall.hue"], o.metrics["eye.wall.sat"]);
-    o.verdict(
+    o.claim(
         "WCAM over-corrects the green: the wall above the checker turns slightly purple (hue 292°, S 5 %)",
-        format!(
-            "WCAM wall hue {:.0}° (within 30° of 292°: {}), S {} (in [1 %, 10 %]: {})",
-            wh,
-            yes(hue_diff(wh, 292.0).abs() <= 30.0),
-            pct(ws),
-            yes((0.01..=0.10).contains(&ws))
-        ),
-        hue_diff(wh, 292.0).abs() <= 30.0 && (0.01..=0.10).contains(&ws),
+        vec![
+            below(
+                "WCAM wall |hue − 292°| (°)",
+                hue_diff(wh, 292.0).abs(),
+                30.0,
+            ),
+            above("WCAM wall S", ws, 0.01),
+            below("WCAM wall S", ws, 0.10),
+        ],
     );
-    o.verdict(
+    o.claim(
         "eye leaves the wall a little green (hue 132°, S 2 %)",
-        format!(
-            "eye wall hue {:.0}° (within 30° of 132°: {}), S {} (in [0.5 %, 5 %]: {})",
-            eh,
-            yes(hue_diff(eh, 132.0).abs() <= 30.0),
-            pct(esat),
-            yes((0.005..=0.05).contains(&esat))
-        ),
-        hue_diff(eh, 132.0).abs() <= 30.0 && (0.005..=0.05).contains(&esat),
+        vec![
+            below("eye wall |hue − 132°| (°)", hue_diff(eh, 132.0).abs(), 30.0),
+            above("eye wall S", esat, 0.005),
+            below("eye wall S", esat, 0.05),
+        ],
     );
     let (cm_e, cm_w) = (
         o.metrics["eye.checker.mean"],
         o.metrics["wcam.checker.mean"],
     );
-    o.verdict(
+    o.claim(
         "eye outperforms WCAM (colours look more natural)",
-        format!(
-            "mean checker ΔE00: eye {} < WCAM {}",
-            f(cm_e, 2),
-            f(cm_w, 2)
-        ),
-        cm_e < cm_w,
+        vec![below("mean checker ΔE00, eye − WCAM", cm_e - cm_w, 0.0)],
     );
 }

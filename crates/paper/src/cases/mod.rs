@@ -15,7 +15,8 @@ use super::measure::{
     Region, equal_luminance_hsv, hue_diff, pixels_in_box, reflectance, region_mean,
 };
 use super::sheet::Tiles;
-use super::{CaseInfo, CaseReport, JobRun, Named, Shot, Verdict};
+use super::{CaseInfo, CaseReport, JobRun, Named, Shot};
+use crate::verdict::{Check, ClaimRun, above, below};
 use eyeadapt_color::{
     D65_XYZ, Estimate, FrameAovs, SeriesParams, SeriesPoint, delta_e_2000, delta_uv, hsv_of_linear,
     luminance, rgb_to_xyz, series_metrics, wcam, whiteness, xyz_to_lab, xyz_to_rgb, xyz_to_uv,
@@ -126,14 +127,14 @@ impl Table {
 
 fn setup_line(run: &JobRun) -> String {
     let j = &run.job;
+    let source = j.scene.source.display().to_string();
+    let files = match source.strip_prefix("builtin:") {
+        Some(b) => format!("`configs/{}.toml` over `builtin:{b}`", run.name),
+        // A template of paper/scenes/, filled (the work directory holds the filled files).
+        None => "the job and scene templates of `paper/scenes/`, baseline configuration".into(),
+    };
     format!(
-        "`configs/{}.toml` over `builtin:{}`: {}×{}, {} spp, max_depth {}, {} eye-sensor paths per frame, {} frame(s), CAT02 with D = {}.",
-        run.name,
-        j.scene
-            .source
-            .display()
-            .to_string()
-            .trim_start_matches("builtin:"),
+        "{files}: {}×{}, {} spp, max_depth {}, {} eye-sensor paths per frame, {} frame(s), CAT02 with D = {}.",
         j.width,
         j.height,
         j.spp,
@@ -179,7 +180,7 @@ fn d65_uv() -> DVec2 {
 struct Out {
     md: String,
     metrics: BTreeMap<String, f64>,
-    verdicts: Vec<Verdict>,
+    claims: Vec<ClaimRun>,
 }
 
 impl Out {
@@ -187,7 +188,7 @@ impl Out {
         Out {
             md: String::new(),
             metrics: BTreeMap::new(),
-            verdicts: Vec::new(),
+            claims: Vec::new(),
         }
     }
 
@@ -195,11 +196,11 @@ impl Out {
         self.metrics.insert(k.into(), v);
     }
 
-    fn verdict(&mut self, claim: &str, test: String, holds: bool) {
-        self.verdicts.push(Verdict {
+    /// A claim of the paper and the checks that decide it (on this run's numbers).
+    fn claim(&mut self, claim: &str, checks: Vec<Check>) {
+        self.claims.push(ClaimRun {
             claim: claim.into(),
-            test,
-            holds,
+            checks,
         });
     }
 }
@@ -209,8 +210,9 @@ pub const WCAM_NO_BENCH: &str = "wcam_without_bench";
 
 /// Extra per-frame readings and numbers a case needs besides the estimators. Case 6: `wcam`
 /// recomputed without the pixels whose first hit lies on the glossy bench, and the bench's
-/// share of WCAM's weighted luminance sum (`bench_share`), to test the paper's explanation of
-/// WCAM's jump (a specular highlight on the bench).
+/// share of WCAM's weighted luminance sum (`bench_share`), and its brightest pixel over the
+/// image's 99th-percentile luminance (`bench_peak`), to test the paper's explanation of WCAM's
+/// jump (a specular highlight on the bench).
 pub(crate) fn diagnostics(
     case: &CaseInfo,
     job: &Job,
@@ -255,6 +257,20 @@ pub(crate) fn diagnostics(
         if total > 0.0 { on_bench / total } else { 0.0 },
     );
     diag.insert("bench_pixels".into(), px.len() as f64);
+    // Does a highlight stand out on the bench: its brightest pixel against the 99th
+    // percentile of the image's surface pixels (emitters left out).
+    let lum = |i: usize| luminance(glam::Vec3::from(image.rgb[i]).as_dvec3());
+    let mut surf: Vec<f64> = (0..image.width * image.height)
+        .filter(|&i| image.hit[i] > 0.0 && image.emitter[i] == 0.0)
+        .map(lum)
+        .collect();
+    surf.sort_by(f64::total_cmp);
+    let p99 = surf
+        .get((surf.len() as f64 * 0.99) as usize)
+        .copied()
+        .unwrap_or(f64::NAN);
+    let peak = px.iter().map(|&i| lum(i)).fold(0.0, f64::max);
+    diag.insert("bench_peak".into(), peak / p99);
     (
         vec![Named {
             name: WCAM_NO_BENCH,
@@ -280,8 +296,11 @@ pub(crate) fn evaluate(case: &'static CaseInfo, runs: &[JobRun]) -> Result<CaseR
         paper_claim: claim.into(),
         markdown: out.md,
         metrics: out.metrics,
-        verdicts: out.verdicts,
+        claims: out.claims,
+        verdicts: Vec::new(),
+        study: None,
         sheet: None,
+        plot: None,
     })
 }
 
@@ -295,8 +314,8 @@ pub(crate) fn sheet_rows<'a>(
     if case.number != 6 {
         return all.iter().map(|s| &s.tiles).collect();
     }
-    // The walkthrough: the two frames around WCAM's largest step in the first second (the
-    // paper's Fig. 15), the two around its largest step overall, and the last frame.
+    // The walkthrough: the paper's frames 5 and 10 (Fig. 15), the two frames around WCAM's
+    // largest step overall, and the last frame.
     let pick = |frame: f64| -> Option<&'a Tiles> {
         runs[0]
             .shots
@@ -304,11 +323,14 @@ pub(crate) fn sheet_rows<'a>(
             .find(|s| s.frame as f64 == frame)
             .map(|s| &s.tiles)
     };
-    let m = |k: &str| report.metrics.get(k).copied().unwrap_or(f64::NAN);
-    let (j1, j) = (m("wcam.begin_max_jump_frame"), m("wcam.max_jump_frame"));
+    let j = report
+        .metrics
+        .get("wcam.max_jump_frame")
+        .copied()
+        .unwrap_or(f64::NAN);
     let last = runs[0].shots.last().map_or(0.0, |s| s.frame as f64);
-    let mut frames = vec![j1 - 1.0, j1];
-    if j != j1 {
+    let mut frames = vec![5.0, 10.0];
+    if j.is_finite() && j != 5.0 && j != 10.0 {
         frames.extend([j - 1.0, j]);
     }
     frames.push(last);
