@@ -98,20 +98,13 @@ impl Feed for Bsdf {
                 specular_reflectance.feed(h);
                 specular_transmittance.feed(h);
             }
-            Bsdf::OneSided(b) => {
-                tag(h, 6);
-                b.feed(h);
-            }
-            Bsdf::Mask { opacity, bsdf } => {
-                tag(h, 7);
-                opacity.feed(h);
-                bsdf.feed(h);
-            }
-            Bsdf::NormalMap { normals, bsdf } => {
-                tag(h, 8);
-                normals.0.feed(h);
-                bsdf.feed(h);
-            }
+            // Wrappers (and the null surface) are tagged 6–8 and 11–13.
+            Bsdf::OneSided(_)
+            | Bsdf::Mask { .. }
+            | Bsdf::NormalMap { .. }
+            | Bsdf::BumpMap { .. }
+            | Bsdf::Blend { .. }
+            | Bsdf::Null => feed_wrapper(self, h),
             Bsdf::Principled(p) => {
                 tag(h, 9);
                 p.feed(h);
@@ -120,23 +113,6 @@ impl Feed for Bsdf {
                 tag(h, 10);
                 p.feed(h);
             }
-            Bsdf::BumpMap {
-                height,
-                scale,
-                bsdf,
-            } => {
-                tag(h, 11);
-                height.0.feed(h);
-                scale.feed(h);
-                bsdf.feed(h);
-            }
-            Bsdf::Blend { weight, bsdfs } => {
-                tag(h, 12);
-                weight.feed(h);
-                bsdfs[0].feed(h);
-                bsdfs[1].feed(h);
-            }
-            Bsdf::Null => tag(h, 13),
             Bsdf::PPlastic {
                 diffuse_reflectance,
                 specular_reflectance,
@@ -220,6 +196,44 @@ impl Feed for PrincipledThin {
         ] {
             p.feed(h);
         }
+    }
+}
+
+/// A BSDF that wraps others (or none): its tag, its own parameters, then what it wraps.
+fn feed_wrapper(b: &Bsdf, h: &mut Sha256) {
+    match b {
+        Bsdf::OneSided(b) => {
+            tag(h, 6);
+            b.feed(h);
+        }
+        Bsdf::Mask { opacity, bsdf } => {
+            tag(h, 7);
+            opacity.feed(h);
+            bsdf.feed(h);
+        }
+        Bsdf::NormalMap { normals, bsdf } => {
+            tag(h, 8);
+            normals.0.feed(h);
+            bsdf.feed(h);
+        }
+        Bsdf::BumpMap {
+            height,
+            scale,
+            bsdf,
+        } => {
+            tag(h, 11);
+            height.0.feed(h);
+            scale.feed(h);
+            bsdf.feed(h);
+        }
+        Bsdf::Blend { weight, bsdfs } => {
+            tag(h, 12);
+            weight.feed(h);
+            bsdfs[0].feed(h);
+            bsdfs[1].feed(h);
+        }
+        Bsdf::Null => tag(h, 13),
+        _ => unreachable!("Bsdf::feed passes only wrappers"),
     }
 }
 
