@@ -1,5 +1,6 @@
-//! Mitsuba 3 XML `principled` and `principledthin`: defaults, textures for weights, the
-//! `specular`→IOR mapping, which side is black, and located errors for bad values.
+//! Mitsuba 3 XML `principled` and `principledthin` (defaults, textures for weights, the
+//! `specular`→IOR mapping, which side is black, located errors for bad values), and the OBJ
+//! texture coordinates their textured test scenes need.
 use eyeadapt_scene::{Bsdf, Param, Principled, PrincipledThin, Rgb, Scene, load_mitsuba_str};
 use std::path::Path;
 
@@ -135,4 +136,34 @@ fn bad_values_are_errors_at_their_line_naming_the_field() {
         load("<bsdf type=\"principledthin\" id=\"m\">\n<float name=\"eta\" value=\"0\"/>\n</bsdf>")
             .unwrap_err();
     assert!(e.contains("test.xml:3:") && e.contains("`eta`"), "{e}");
+}
+
+/// An OBJ's texture coordinates are flipped once by default (v → 1 − v, Mitsuba's
+/// `flip_tex_coords`), not twice; with the flag off they are the file's.
+#[test]
+fn obj_texture_coordinates_are_flipped_once() {
+    let dir = std::env::temp_dir().join(format!("eyeadapt-obj-uv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let obj = dir.join("tri.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0.25\nvt 1 0.25\nvt 0 1\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    for (flag, v) in [
+        ("", 0.75),
+        ("<boolean name=\"flip_tex_coords\" value=\"false\"/>", 0.25),
+    ] {
+        let text = format!(
+            "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"{}\"/>{flag}</shape></scene>",
+            obj.display()
+        );
+        let s = load_mitsuba_str(&text, &dir.join("s.xml"), &[]).unwrap();
+        assert!(
+            (s.meshes[0].uvs[0].y - v).abs() < 1e-6,
+            "{flag}: {:?}",
+            s.meshes[0].uvs
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

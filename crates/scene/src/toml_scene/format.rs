@@ -66,6 +66,19 @@ pub struct MaterialDef {
     pub reflectance_texture: Option<Spanned<String>>,
     pub roughness_texture: Option<Spanned<String>>,
     pub specular_reflectance_texture: Option<Spanned<String>>,
+    // `principled` only (`principled.rs`); it also takes roughness(_texture) and ior.
+    pub base_color: Option<V3>,
+    pub base_color_texture: Option<Spanned<String>>,
+    pub metallic: Option<Spanned<f32>>,
+    pub specular: Option<Spanned<f32>>,
+    pub spec_tint: Option<Spanned<f32>>,
+    pub anisotropic: Option<Spanned<f32>>,
+    pub sheen: Option<Spanned<f32>>,
+    pub sheen_tint: Option<Spanned<f32>>,
+    pub clearcoat: Option<Spanned<f32>>,
+    pub clearcoat_gloss: Option<Spanned<f32>>,
+    pub spec_trans: Option<Spanned<f32>>,
+    pub flatness: Option<Spanned<f32>>,
 }
 
 #[derive(Deserialize)]

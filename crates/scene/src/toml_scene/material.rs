@@ -24,6 +24,7 @@ fn allowed_keys(kind: &str) -> Option<&'static [&'static str]> {
         ],
         "dielectric" => &["roughness", "roughness_texture", "ior"],
         "thin_dielectric" => &["ior"],
+        "principled" => super::principled::KEYS,
         _ => return None,
     })
 }
@@ -68,7 +69,7 @@ impl Ctx<'_> {
             self.error(
                 m.kind.span().start,
                 format!(
-                    "unknown material type \"{kind}\" (expected diffuse, conductor, plastic, dielectric or thin_dielectric)"
+                    "unknown material type \"{kind}\" (expected diffuse, conductor, plastic, dielectric, thin_dielectric or principled)"
                 ),
             );
             return Material::error();
@@ -85,6 +86,7 @@ impl Ctx<'_> {
             },
             "conductor" => self.conductor(m, &name),
             "dielectric" | "thin_dielectric" => self.glass(m, kind, &name, |cx| roughness(cx, m)),
+            "principled" => self.principled(m, &name),
             _ => self.plastic(m, &name),
         };
         Material {
@@ -117,6 +119,10 @@ impl Ctx<'_> {
             ),
             ("ior", m.ior.as_ref().map(|v| v.span().start)),
         ];
+        let principled = super::principled::present(m);
+        let present = present
+            .into_iter()
+            .chain(principled.into_iter().map(|(k, a)| (k, Some(a))));
         for (key, at) in present {
             if let Some(at) = at
                 && !allowed.contains(&key)
@@ -242,7 +248,7 @@ impl Ctx<'_> {
 
     /// A parameter given either as a constant (`constant` reads it) or by `texture` name; both
     /// at once, or an unknown texture, is an error.
-    fn param<T>(
+    pub(super) fn param<T>(
         &mut self,
         material: &str,
         texture: &Option<toml::Spanned<String>>,

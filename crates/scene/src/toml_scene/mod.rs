@@ -6,6 +6,7 @@ mod environment;
 mod format;
 mod light;
 mod material;
+mod principled;
 mod shape;
 mod texture;
 

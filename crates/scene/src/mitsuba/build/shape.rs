@@ -245,8 +245,10 @@ impl<'t> Builder<'t> {
                 return None;
             }
         };
-        // The files' own UVs; `flip_tex_coords` turns v into 1 − v, as in Mitsuba.
-        if flip_v {
+        // `flip_tex_coords` turns the file's v into 1 − v, as in Mitsuba. The OBJ reader has
+        // already done so (its meshes follow Mitsuba's default), so an OBJ is flipped back
+        // only when the scene turns the flip off.
+        if flip_v != (kind == "obj") {
             for uv in meshes.iter_mut().flat_map(|m| &mut m.uvs) {
                 uv.y = 1.0 - uv.y;
             }
