@@ -203,7 +203,9 @@ impl Materials {
     }
 
     /// The shading normal of `leaf` at `si` seen from `wo`: the mesh's, its normal map's or
-    /// its bump map's (`bump.rs`, with the bump's shadowing term).
+    /// its bump map's (`bump.rs`), with the shadowing term Mitsuba applies to both maps. A
+    /// mapped normal the viewer is below is mirrored about the mesh's (Mitsuba's
+    /// `flip_invalid_normals`).
     #[inline]
     pub fn shading_normal(
         &self,
@@ -211,14 +213,20 @@ impl Materials {
         si: &SurfaceInteraction,
         wo: Vec3A,
     ) -> (Vec3A, Option<Terminator>) {
-        let n = self.normal_mapped(leaf, si);
+        let mut n = si.ns;
+        if leaf.0.normal_map.is_some() {
+            n = self.normal_mapped(leaf, si);
+            if wo.dot(si.ns) * wo.dot(n) <= 0.0 {
+                n = 2.0 * n.dot(si.ns) * si.ns - n;
+            }
+        }
         let Some((t, scale)) = leaf.0.bump else {
-            return (n, None);
+            return (n, leaf.0.normal_map.map(|_| Terminator::new(si.ns, n)));
         };
         let g = height_gradient(&self.textures[t.0 as usize], si) * scale;
         let si_n = SurfaceInteraction { ns: n, ..*si };
         let m = bumped_normal(&si_n, g, wo);
-        (m, Some(Terminator::new(n, m)))
+        (m, Some(Terminator::new(si.ns, m)))
     }
 
     /// The mesh's shading normal, or the normal map's, 2·rgb − 1 in the frame of the mesh's
