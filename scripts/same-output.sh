@@ -32,7 +32,7 @@ run() {
         "$bin" sequence --frames 0-3 --chunk-size 2 --chunk-index "$i" --width 32 --height 18 \
             --spp 2 --eye-samples 128 --out "$out/chunks/$i" --no-progress-bar >"$out/chunk.log" 2>&1
     done
-    "$bin" merge "$out/chunks/0" "$out/chunks/1" --out "$out/merged" >"$out/merge.log" 2>&1
+    "$bin" merge "$out/chunks/0" "$out/chunks/1" --frames 0-3 --out "$out/merged" >"$out/merge.log" 2>&1
     "$bin" report "$out/merged" >"$out/report.log" 2>&1
     "$bin" plan --frames 0-3 --chunk-size 3 >"$out/plan.txt" 2>&1
     # Logs hold timings; only the files the commands wrote are compared.

@@ -230,37 +230,10 @@ pub fn image_pass(
     stride: usize,
     on_frame: &dyn Fn(usize, usize),
 ) -> Result<Result<ImagePass, String>, Failure> {
-    let paths: Vec<(u32, String)> = m
-        .frames
-        .iter()
-        .map(|(&f, _)| (f, format!("frames/raw/{}", frame_name(f, "exr"))))
-        .collect();
-    let missing: Vec<u32> = paths
-        .iter()
-        .filter(|(f, rel)| !m.frames[f].files.iter().any(|e| &e.path == rel))
-        .map(|(f, _)| *f)
-        .collect();
-    if !missing.is_empty() {
-        return Ok(Err(format!(
-            "no raw EXR for {} frame(s) (first: {}); the job's outputs.raw_exr is off",
-            missing.len(),
-            missing[0]
-        )));
-    }
-    // Every frame is checked against its record before any is decoded.
-    for (f, rel) in &paths {
-        let entry = m.frames[f].files.iter().find(|e| &e.path == rel);
-        let p = dir.join(rel);
-        let len = eyeadapt_scene::check_input(&p)
-            .map_err(|e| Failure::input_io("cannot read raw EXR", &p, &e))?;
-        if let Some(e) = entry.filter(|e| e.bytes != len) {
-            return Err(Failure::Input(format!(
-                "{}: frame {f}'s raw EXR is {len} bytes but manifest.json records {} (damaged)",
-                p.display(),
-                e.bytes
-            )));
-        }
-    }
+    let paths = match raw_exrs(dir, m)? {
+        Ok(p) => p,
+        Err(why) => return Ok(Err(why)),
+    };
     type Pixels = (Vec<[f32; 3]>, Vec<f32>);
     let read = |rel: &str| -> Result<(usize, usize, Pixels), Failure> {
         let fr = read_exr(&dir.join(rel))?;
@@ -343,4 +316,42 @@ pub fn image_pass(
         width,
         height,
     }))
+}
+
+/// The committed frames' raw EXRs (frame, path relative to `dir`), each checked against its
+/// manifest record (present, same size) before any is decoded. `Ok(Err(why))` when a frame
+/// has none (the job did not write raw EXRs).
+fn raw_exrs(dir: &Path, m: &Manifest) -> Result<Result<Vec<(u32, String)>, String>, Failure> {
+    let paths: Vec<(u32, String)> = m
+        .frames
+        .iter()
+        .map(|(&f, _)| (f, format!("frames/raw/{}", frame_name(f, "exr"))))
+        .collect();
+    let missing: Vec<u32> = paths
+        .iter()
+        .filter(|(f, rel)| !m.frames[f].files.iter().any(|e| &e.path == rel))
+        .map(|(f, _)| *f)
+        .collect();
+    if !missing.is_empty() {
+        return Ok(Err(format!(
+            "no raw EXR for {} frame(s) (first: {}); the job's outputs.raw_exr is off",
+            missing.len(),
+            missing[0]
+        )));
+    }
+    // Every frame is checked against its record before any is decoded.
+    for (f, rel) in &paths {
+        let entry = m.frames[f].files.iter().find(|e| &e.path == rel);
+        let p = dir.join(rel);
+        let len = eyeadapt_scene::check_input(&p)
+            .map_err(|e| Failure::input_io("cannot read raw EXR", &p, &e))?;
+        if let Some(e) = entry.filter(|e| e.bytes != len) {
+            return Err(Failure::Input(format!(
+                "{}: frame {f}'s raw EXR is {len} bytes but manifest.json records {} (damaged)",
+                p.display(),
+                e.bytes
+            )));
+        }
+    }
+    Ok(Ok(paths))
 }

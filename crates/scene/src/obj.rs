@@ -240,44 +240,7 @@ fn convert(
     let mut warned_unknown = false;
     for model in models {
         let m = &model.mesh;
-        if m.positions.len() % 3 != 0 || m.indices.len() % 3 != 0 {
-            return Err(format!(
-                "OBJ {}: model \"{}\" is malformed",
-                path.display(),
-                model.name
-            )
-            .into());
-        }
-        let positions: Vec<Vec3> = m
-            .positions
-            .chunks_exact(3)
-            .map(|p| Vec3::new(p[0], p[1], p[2]))
-            .collect();
-        if positions.iter().any(|p| !p.is_finite()) {
-            return Err(ConvertError::NonFiniteVertex(model.name.clone()));
-        }
-        let n = positions.len() as u32;
-        let indices: Vec<[u32; 3]> = m
-            .indices
-            .chunks_exact(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .collect();
-        if indices.iter().flatten().any(|&i| i >= n) {
-            return Err(format!(
-                "OBJ {}: model \"{}\" indexes a vertex that does not exist",
-                path.display(),
-                model.name
-            )
-            .into());
-        }
-        let normals: Vec<Vec3> = if m.normals.len() == m.positions.len() {
-            m.normals
-                .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2]).normalize_or_zero())
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let mesh = mesh_of(path, &model)?;
         let material = if override_material.is_some() {
             None
         } else {
@@ -296,42 +259,11 @@ fn convert(
                 }
             }
         };
-        let uvs: Vec<Vec2> = if m.texcoords.len() / 2 == positions.len() {
-            m.texcoords
-                .chunks_exact(2)
-                .map(|t| Vec2::new(t[0], 1.0 - t[1]))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let colors: Vec<Rgb> = if m.vertex_color.len() == m.positions.len() {
-            m.vertex_color
-                .chunks_exact(3)
-                .map(|c| Rgb::new(c[0], c[1], c[2]))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        if !uvs.iter().all(|t| t.is_finite()) || !colors.iter().all(|c| c.is_finite()) {
-            return Err(format!(
-                "OBJ {}: model \"{}\" has a non-finite texture coordinate or vertex colour",
-                path.display(),
-                model.name
-            )
-            .into());
-        }
         let map = match (&material, m.material_id.and_then(|i| mtls.get(i))) {
             (Some(_), Some(mtl)) => mtl.diffuse_texture.clone(),
             _ => None,
         };
-        out.meshes.push(Mesh {
-            name: format!("{}#{}", path.display(), model.name),
-            positions,
-            indices,
-            normals,
-            uvs,
-            colors,
-        });
+        out.meshes.push(mesh);
         out.materials.push(material);
         out.diffuse_maps.push(map);
     }
@@ -339,6 +271,73 @@ fn convert(
         return Err(format!("OBJ {} contains no triangles", path.display()).into());
     }
     Ok(out)
+}
+
+/// A tobj model as a [`Mesh`]: finite positions, texture coordinates and colours, indices
+/// that exist; normals, UVs (flipped to the image's top-left origin) and colours kept only
+/// when every vertex has them.
+fn mesh_of(path: &Path, model: &tobj::Model) -> Result<Mesh, ConvertError> {
+    let m = &model.mesh;
+    let malformed = |what: &str| -> ConvertError {
+        format!("OBJ {}: model \"{}\" {what}", path.display(), model.name).into()
+    };
+    if !m.positions.len().is_multiple_of(3) || !m.indices.len().is_multiple_of(3) {
+        return Err(malformed("is malformed"));
+    }
+    let positions: Vec<Vec3> = m
+        .positions
+        .chunks_exact(3)
+        .map(|p| Vec3::new(p[0], p[1], p[2]))
+        .collect();
+    if positions.iter().any(|p| !p.is_finite()) {
+        return Err(ConvertError::NonFiniteVertex(model.name.clone()));
+    }
+    let n = positions.len() as u32;
+    let indices: Vec<[u32; 3]> = m
+        .indices
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    if indices.iter().flatten().any(|&i| i >= n) {
+        return Err(malformed("indexes a vertex that does not exist"));
+    }
+    let normals: Vec<Vec3> = if m.normals.len() == m.positions.len() {
+        m.normals
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]).normalize_or_zero())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let uvs: Vec<Vec2> = if m.texcoords.len() / 2 == positions.len() {
+        m.texcoords
+            .chunks_exact(2)
+            .map(|t| Vec2::new(t[0], 1.0 - t[1]))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let colors: Vec<Rgb> = if m.vertex_color.len() == m.positions.len() {
+        m.vertex_color
+            .chunks_exact(3)
+            .map(|c| Rgb::new(c[0], c[1], c[2]))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if !uvs.iter().all(|t| t.is_finite()) || !colors.iter().all(|c| c.is_finite()) {
+        return Err(malformed(
+            "has a non-finite texture coordinate or vertex colour",
+        ));
+    }
+    Ok(Mesh {
+        name: format!("{}#{}", path.display(), model.name),
+        positions,
+        indices,
+        normals,
+        uvs,
+        colors,
+    })
 }
 
 /// An MTL material as a diffuse [`Material`]. `Kd` above 1 is clamped (a sloppy MTL cannot make

@@ -203,9 +203,11 @@ impl Materials {
     }
 
     /// The shading normal of `leaf` at `si` seen from `wo`: the mesh's, its normal map's or
-    /// its bump map's (`bump.rs`), with the shadowing term Mitsuba applies to both maps. A
-    /// mapped normal the viewer is below is mirrored about the mesh's (Mitsuba's
-    /// `flip_invalid_normals`).
+    /// its bump map's (`bump.rs`, with the bump's shadowing term).
+    ///
+    /// Mitsuba 3.9.1 mirrors a normal-mapped normal the viewer is below and applies the same
+    /// shadowing term to normal maps too; eyeadapt's normal maps (also glTF's, which have
+    /// neither) do not, yet: that would need a flag on `Bsdf::NormalMap`.
     #[inline]
     pub fn shading_normal(
         &self,
@@ -213,20 +215,14 @@ impl Materials {
         si: &SurfaceInteraction,
         wo: Vec3A,
     ) -> (Vec3A, Option<Terminator>) {
-        let mut n = si.ns;
-        if leaf.0.normal_map.is_some() {
-            n = self.normal_mapped(leaf, si);
-            if wo.dot(si.ns) * wo.dot(n) <= 0.0 {
-                n = 2.0 * n.dot(si.ns) * si.ns - n;
-            }
-        }
+        let n = self.normal_mapped(leaf, si);
         let Some((t, scale)) = leaf.0.bump else {
-            return (n, leaf.0.normal_map.map(|_| Terminator::new(si.ns, n)));
+            return (n, None);
         };
         let g = height_gradient(&self.textures[t.0 as usize], si) * scale;
         let si_n = SurfaceInteraction { ns: n, ..*si };
         let m = bumped_normal(&si_n, g, wo);
-        (m, Some(Terminator::new(si.ns, m)))
+        (m, Some(Terminator::new(n, m)))
     }
 
     /// The mesh's shading normal, or the normal map's, 2·rgb − 1 in the frame of the mesh's

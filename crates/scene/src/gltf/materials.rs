@@ -24,14 +24,17 @@
 //!   with a volume a refracting `dielectric`; a rough one (roughness > 0) is a
 //!   `roughdielectric` with α = roughness²;
 //! - alpha: `MASK` cuts the surface out where base colour alpha (texture × factor) is below
-//!   `alphaCutoff`, `BLEND` lets light through in proportion to 1 − alpha (a `mask`).
+//!   `alphaCutoff`, `BLEND` lets light through in proportion to 1 − alpha (a `mask`);
+//! - `normalTexture` (with its `scale`) bends the shading normal in glTF's tangent space, a
+//!   `normalmap` around the BSDF (tangents from the UVs; a `KHR_texture_transform` on a
+//!   normal texture is not read: the `gltf` crate does not give it).
 //!
 //! What is not rendered yet is reported as a warning naming the material's JSON pointer: a
-//! metallic or transmission value strictly between 0 and 1, emissive and normal textures, a
+//! metallic or transmission value strictly between 0 and 1, emissive textures, a
 //! transmission texture (its factor is used), rough thin-walled glass (rendered as a rough
 //! interface).
 use super::read::{GltfFile, at};
-use super::textures::{Textures, Use};
+use super::textures::{TexRef, Textures, Use};
 use crate::{Bsdf, Diagnostic, Distribution, Material, Param, Rgb, Scene, Severity};
 
 /// What every part of one material's reading shares.
@@ -85,23 +88,17 @@ pub fn material<'f>(
         warnings,
         here: here.clone(),
     };
-    for (present, field, what) in [
-        (
-            m.emissive_texture().is_some(),
-            "emissiveTexture",
-            "emissive textures are not read yet; the emissive factor is used",
-        ),
-        (
-            m.normal_texture().is_some(),
-            "normalTexture",
-            "normal maps are not read yet; the mesh's normals are used",
-        ),
-    ] {
+    for (present, field, what) in [(
+        m.emissive_texture().is_some(),
+        "emissiveTexture",
+        "emissive textures are not read yet; the emissive factor is used",
+    )] {
         if present {
             cx.warn(field, what);
         }
     }
     let surface = surface(&mut cx, m)?;
+    let surface = with_normal_map(&mut cx, m, surface)?;
     let bsdf = with_alpha(&mut cx, m, surface)?;
     let emission = Rgb::from_array(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0);
     Ok(Material {
@@ -110,6 +107,29 @@ pub fn material<'f>(
             .map_or_else(|| here.trim_start_matches('/').to_string(), str::to_string),
         bsdf,
         emission: emission.max(Rgb::ZERO),
+    })
+}
+
+/// `bsdf` shaded with the material's normal texture, if it has one: glTF's tangent space is
+/// (∂p/∂u, n × ∂p/∂u, n) for UVs that are not mirrored, the frame [`Bsdf::NormalMap`] uses
+/// (tangents are derived per triangle from the UVs, not read from a `TANGENT` attribute).
+fn with_normal_map(cx: &mut Ctx, m: &gltf::Material, bsdf: Bsdf) -> Result<Bsdf, Diagnostic> {
+    let Some(nt) = m.normal_texture() else {
+        return Ok(bsdf);
+    };
+    let pointer = format!("{}/normalTexture", cx.here);
+    let reference = TexRef {
+        texture: nt.texture(),
+        tex_coord: nt.tex_coord(),
+        transform: None,
+    };
+    let usage = Use::Normal(nt.scale().to_bits());
+    let normals = cx
+        .textures
+        .get(cx.scene, reference, usage, &pointer, cx.warnings)?;
+    Ok(Bsdf::NormalMap {
+        normals,
+        bsdf: Box::new(bsdf),
     })
 }
 

@@ -34,6 +34,28 @@ pub enum Use {
     Alpha(u32),
     /// Opacity: factor · A, cut to 0 or 1 at `cutoff` for glTF's MASK mode (bits in the key).
     Opacity { factor: u32, cutoff: Option<u32> },
+    /// A tangent-space normal, linear RGB = (n + 1) / 2, its x and y times the normal
+    /// texture's `scale` (bits in the key) and the result renormalised, so that the texel
+    /// stays in [0, 1] and is what [`crate::Bsdf::NormalMap`] reads.
+    Normal(u32),
+}
+
+/// A texture reference: a material's `textureInfo` or its normal texture (which glTF
+/// gives a `scale` instead of a factor, and the `gltf` crate no `KHR_texture_transform`).
+pub struct TexRef<'a> {
+    pub texture: gltf::Texture<'a>,
+    pub tex_coord: u32,
+    pub transform: Option<gltf::texture::TextureTransform<'a>>,
+}
+
+impl<'a> From<&gltf::texture::Info<'a>> for TexRef<'a> {
+    fn from(info: &gltf::texture::Info<'a>) -> TexRef<'a> {
+        TexRef {
+            texture: info.texture(),
+            tex_coord: info.tex_coord(),
+            transform: info.texture_transform(),
+        }
+    }
 }
 
 /// Decoded images and the textures made from them, for one file.
@@ -70,21 +92,24 @@ impl<'a> Textures<'a> {
     /// The texture table entry for `info` read as `usage`; `pointer` is the JSON pointer of
     /// the texture reference (messages). Errors name the image; a UV set other than 0 is a
     /// warning (read with TEXCOORD_0).
-    pub fn get(
+    pub fn get<'r>(
         &mut self,
         scene: &mut Scene,
-        info: &gltf::texture::Info,
+        info: impl Into<TexRef<'r>>,
         usage: Use,
         pointer: &str,
         warnings: &mut Vec<Diagnostic>,
     ) -> Result<TextureId, Diagnostic> {
-        let tex = info.texture();
+        let TexRef {
+            texture: tex,
+            tex_coord,
+            transform,
+        } = info.into();
         let image = tex.source().index();
-        let transform = info.texture_transform();
         let set = transform
             .as_ref()
             .and_then(|t| t.tex_coord())
-            .unwrap_or(info.tex_coord());
+            .unwrap_or(tex_coord);
         if set != 0 {
             warnings.push(at(
                 &self.file.path,
@@ -215,6 +240,16 @@ fn texel(p: &[f32; 4], usage: Use) -> Rgb {
                 Some(_) => 0.0,
                 None => a,
             })
+        }
+        Use::Normal(scale) => {
+            let s = f32::from_bits(scale);
+            let n = glam::Vec3::new(
+                (2.0 * p[0] - 1.0) * s,
+                (2.0 * p[1] - 1.0) * s,
+                2.0 * p[2] - 1.0,
+            )
+            .normalize_or(glam::Vec3::Z);
+            (n + Rgb::ONE) * 0.5
         }
     }
 }

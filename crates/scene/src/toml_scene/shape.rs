@@ -96,19 +96,75 @@ impl Ctx<'_> {
     ) {
         let d = s.get_ref();
         let kind = d.kind.get_ref().as_str();
-        let material = match &d.material {
-            Some(n) => match names.get(n.get_ref()) {
-                Some(id) => Some(*id),
-                None => {
-                    self.warning(
-                        n.span().start,
-                        format!("unknown material \"{}\": rendering shapes[{index}] with the error material (magenta)", n.get_ref()),
-                    );
-                    None
-                }
-            },
-            None => None,
+        let material = self.shape_material(index, d, names);
+        if !self.check_shape_keys(index, d) {
+            return;
+        }
+        if kind != "obj" && d.material.is_none() {
+            self.error(
+                s.span().start,
+                format!("shapes[{index}] ({kind}) needs a `material`"),
+            );
+        }
+        let transform = d
+            .transform
+            .as_ref()
+            .map(|t| self.transform(t))
+            .unwrap_or_default();
+        let mut meshes: Vec<(Mesh, Option<MaterialId>)> = if kind == "obj" {
+            let Some(meshes) = self.obj_shape(index, s, material, scene) else {
+                return;
+            };
+            meshes
+        } else {
+            vec![(self.primitive(index, s), material)]
         };
+        if let Some(name) = &d.name {
+            self.named_shape(name, d, meshes, transform, scene);
+            return;
+        }
+        if d.template == Some(true) {
+            self.error(
+                s.span().start,
+                format!("shapes[{index}]: `template` needs a `name` for instances to use"),
+            );
+        }
+        for (m, _) in &mut meshes {
+            if m.name.is_empty() {
+                m.name = format!("shapes[{index}] ({kind})");
+            }
+            place(m, &transform, d.flip_normals == Some(true));
+        }
+        for (m, material) in meshes {
+            scene.add_world_mesh(m, material);
+        }
+    }
+
+    /// The shape's `material` by name; an unknown name is a warning and the error material.
+    fn shape_material(
+        &mut self,
+        index: usize,
+        d: &ShapeDef,
+        names: &HashMap<String, MaterialId>,
+    ) -> Option<MaterialId> {
+        let n = d.material.as_ref()?;
+        let id = names.get(n.get_ref()).copied();
+        if id.is_none() {
+            self.warning(
+                n.span().start,
+                format!(
+                    "unknown material \"{}\": rendering shapes[{index}] with the error material (magenta)",
+                    n.get_ref()
+                ),
+            );
+        }
+        id
+    }
+
+    /// False (with an error) for an unknown shape type; every key the type does not take is
+    /// an error at the key.
+    fn check_shape_keys(&mut self, index: usize, d: &ShapeDef) -> bool {
+        let kind = d.kind.get_ref().as_str();
         let allowed: &[&str] = match kind {
             "quad" => &["corner", "u", "v"],
             "box" => &["min", "max"],
@@ -119,7 +175,7 @@ impl Ctx<'_> {
                     d.kind.span().start,
                     format!("unknown shape type \"{other}\" (expected obj, quad, box or sphere)"),
                 );
-                return;
+                return false;
             }
         };
         let present = [
@@ -146,18 +202,13 @@ impl Ctx<'_> {
                 );
             }
         }
-        if kind != "obj" && d.material.is_none() {
-            self.error(
-                s.span().start,
-                format!("shapes[{index}] ({kind}) needs a `material`"),
-            );
-        }
-        let transform = d
-            .transform
-            .as_ref()
-            .map(|t| self.transform(t))
-            .unwrap_or_default();
-        let mut meshes: Vec<(Mesh, Option<MaterialId>)> = match kind {
+        true
+    }
+
+    /// The mesh of a quad, box or sphere shape, in object space.
+    fn primitive(&mut self, index: usize, s: &Spanned<ShapeDef>) -> Mesh {
+        let d = s.get_ref();
+        match d.kind.get_ref().as_str() {
             "quad" => {
                 let corner = d
                     .corner
@@ -177,7 +228,7 @@ impl Ctx<'_> {
                         ),
                     );
                 }
-                vec![(quad_mesh(corner, u, v), material)]
+                quad_mesh(corner, u, v)
             }
             "box" => {
                 let min = d
@@ -194,9 +245,9 @@ impl Ctx<'_> {
                         format!("shapes[{index}] box needs max > min on every axis"),
                     );
                 }
-                vec![(box_mesh(min, max), material)]
+                box_mesh(min, max)
             }
-            "sphere" => {
+            _ => {
                 let center = d
                     .center
                     .as_ref()
@@ -216,48 +267,29 @@ impl Ctx<'_> {
                     }
                     None => 4,
                 };
-                vec![(sphere_mesh(center, radius, level), material)]
-            }
-            _ => {
-                let Some(meshes) = self.obj_shape(index, s, material, scene) else {
-                    return;
-                };
-                meshes
-            }
-        };
-        if let Some(name) = &d.name {
-            self.named_shape(name, d, meshes, transform, scene);
-            return;
-        }
-        if d.template == Some(true) {
-            self.error(
-                s.span().start,
-                format!("shapes[{index}]: `template` needs a `name` for instances to use"),
-            );
-        }
-        for (m, _) in &mut meshes {
-            if m.name.is_empty() {
-                m.name = format!("shapes[{index}] ({kind})");
-            }
-            for p in &mut m.positions {
-                *p = transform.point(*p);
-            }
-            for n in &mut m.normals {
-                *n = transform.normal(*n);
-            }
-            if transform.flips_handedness() {
-                // Mirroring reverses winding; restore it so the front side stays where it was.
-                for t in &mut m.indices {
-                    t.swap(1, 2);
-                }
-            }
-            if d.flip_normals == Some(true) {
-                shapes::flip(m);
+                sphere_mesh(center, radius, level)
             }
         }
-        for (m, material) in meshes {
-            scene.add_world_mesh(m, material);
+    }
+}
+
+/// Moves `m` from object to world space by `transform` (keeping its winding when the
+/// transform mirrors), turning its front side round when `flip_normals`.
+fn place(m: &mut Mesh, transform: &Transform, flip_normals: bool) {
+    for p in &mut m.positions {
+        *p = transform.point(*p);
+    }
+    for n in &mut m.normals {
+        *n = transform.normal(*n);
+    }
+    if transform.flips_handedness() {
+        // Mirroring reverses winding; restore it so the front side stays where it was.
+        for t in &mut m.indices {
+            t.swap(1, 2);
         }
+    }
+    if flip_normals {
+        shapes::flip(m);
     }
 }
 
