@@ -237,6 +237,10 @@ impl Materials {
 
     /// The shading normal of `leaf` at `si` seen from `wo`: the mesh's, its normal map's or
     /// its bump map's (`bump.rs`, with the bump's shadowing term).
+    ///
+    /// Mitsuba 3.9.1 mirrors a normal-mapped normal the viewer is below and applies the same
+    /// shadowing term to normal maps too; eyeadapt's normal maps (also glTF's, which have
+    /// neither) do not, yet: that would need a flag on `Bsdf::NormalMap`.
     #[inline]
     pub fn shading_normal(
         &self,

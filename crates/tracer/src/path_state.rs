@@ -355,8 +355,9 @@ impl PathState {
         }
         let (from, front) = v.origin_towards(wi);
         // The sample's side in the shading frame must be its side of the geometric surface:
-        // otherwise it is a shading-normal artefact and no light arrives there.
-        if front != (bs.wi.z > 0.0) || wi.dot(v.ng) == 0.0 {
+        // otherwise it is a shading-normal artefact and no light arrives there. (A ray
+        // through a hole goes straight on whatever the shading normal says.)
+        if (front != (bs.wi.z > 0.0) && !through) || wi.dot(v.ng) == 0.0 {
             return false;
         }
         if self.specular_chain && !bs.delta {

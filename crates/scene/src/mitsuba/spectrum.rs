@@ -43,6 +43,23 @@ fn lookup(table: &[f64; 95], w: f64) -> f64 {
 /// A spectrum (wavelengths in nm, increasing, at least two) as linear sRGB. `emitter`: the
 /// spectrum is a radiance or intensity (no D65 weighting, unbounded above).
 pub(crate) fn to_srgb(pairs: &[(f64, f64)], emitter: bool) -> DVec3 {
+    let rgb = integrate(pairs, !emitter);
+    if emitter {
+        rgb.max(DVec3::ZERO)
+    } else {
+        rgb.clamp(DVec3::ZERO, DVec3::ONE)
+    }
+}
+
+/// A spectrum of an unbounded non-emitter parameter (a conductor's `eta` and `k`, which
+/// Mitsuba reads with `get_unbounded_texture`): D65-weighted like a reflectance, but only
+/// clamped at 0.
+pub(crate) fn to_srgb_unbounded(pairs: &[(f64, f64)]) -> DVec3 {
+    integrate(pairs, true).max(DVec3::ZERO)
+}
+
+/// The spectrum integrated to linear sRGB, weighted by D65 when `d65`, not clamped.
+fn integrate(pairs: &[(f64, f64)], d65: bool) -> DVec3 {
     const STEPS: usize = 1000;
     let (first, last) = (pairs[0].0, pairs[pairs.len() - 1].0);
     let mut xyz = DVec3::ZERO;
@@ -57,21 +74,16 @@ pub(crate) fn to_srgb(pairs: &[(f64, f64)], emitter: bool) -> DVec3 {
             - 1;
         let ((w0, v0), (w1, v1)) = (pairs[k], pairs[k + 1]);
         let v = ((w - w1) * v0 + (w0 - w) * v1) / (w0 - w1);
-        let weight = if emitter {
-            1.0
-        } else {
+        let weight = if d65 {
             lookup(&D65, w) * D65_NORMALIZATION
+        } else {
+            1.0
         };
         let cmf = DVec3::new(lookup(&CIE_X, w), lookup(&CIE_Y, w), lookup(&CIE_Z, w));
         xyz += cmf * v * weight;
     }
     xyz *= (CIE_MAX - CIE_MIN) * Y_NORMALIZATION / STEPS as f64;
-    let rgb = xyz_to_srgb() * xyz;
-    if emitter {
-        rgb.max(DVec3::ZERO)
-    } else {
-        rgb.clamp(DVec3::ZERO, DVec3::ONE)
-    }
+    xyz_to_srgb() * xyz
 }
 
 /// A constant spectrum `v` as an emitter's sRGB radiance.
@@ -201,6 +213,14 @@ const D65: [f64; 95] = [
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn unbounded_parameters_keep_values_above_one() {
+        // A conductor's k of 3: flat, D65-weighted, so grey 3 (a reflectance clamps to 1).
+        let k = to_srgb_unbounded(&[(300.0, 3.0), (900.0, 3.0)]);
+        assert!((k - DVec3::splat(3.0)).abs().max_element() < 0.02, "{k}");
+        assert_eq!(to_srgb(&[(300.0, 3.0), (900.0, 3.0)], false), DVec3::ONE);
+    }
 
     #[test]
     fn a_flat_reflectance_stays_grey() {

@@ -142,6 +142,10 @@ impl<'t> Builder<'t> {
                 // is emitted (`spectrum.rs`).
                 Value::UniformSpectrum(v) if o.tag == "emitter" => spectrum::uniform_emitter(*v),
                 Value::UniformSpectrum(v) => DVec3::splat(*v),
+                // A conductor's complex IOR is unbounded (Mitsuba clamps it at 0 only).
+                Value::Spectrum(pairs) if o.tag == "bsdf" && matches!(name, "eta" | "k") => {
+                    spectrum::to_srgb_unbounded(pairs)
+                }
                 Value::Spectrum(pairs) => spectrum::to_srgb(pairs, o.tag == "emitter"),
                 Value::Float(x) => DVec3::splat(*x),
                 Value::Integer(i) => DVec3::splat(*i as f64),
