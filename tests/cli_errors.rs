@@ -373,3 +373,47 @@ fn render_options_are_checked_before_anything_is_written() {
         }
     }
 }
+
+/// `-D NAME=VALUE` gives a Mitsuba scene's `$parameters` (as `mitsuba -D`); without it an
+/// undefined `$spp` is an error at its attribute; `-D` on a TOML scene or without `=` is a
+/// usage error. All exit 2 before anything is written.
+#[test]
+fn define_gives_mitsuba_parameters_and_is_refused_elsewhere() {
+    let dir = tempfile::tempdir().unwrap();
+    let xml = dir.path().join("scene.xml");
+    std::fs::write(
+        &xml,
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/></sampler><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"6\"/></film></sensor>\n<shape type=\"sphere\"/><emitter type=\"constant\"/>\n</scene>\n",
+    )
+    .unwrap();
+    let toml = dir.path().join("scene.toml");
+    std::fs::write(&toml, GOOD).unwrap();
+    let run = |args: &[&str]| {
+        let out = dir.path().join("out");
+        let o = eyeadapt()
+            .arg("render")
+            .args(args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        (
+            o.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+            out.join("raw.exr").exists(),
+        )
+    };
+    let x = xml.to_str().unwrap();
+    let (code, err, written) = run(&[x]);
+    assert!(
+        code == 2 && err.contains("scene.xml:2:") && err.contains("$spp") && !written,
+        "{err}"
+    );
+    let (code, err, written) = run(&[x, "-D", "spp=2"]);
+    assert!(code == 0 && written, "{err}");
+    let _ = std::fs::remove_dir_all(dir.path().join("out"));
+    let (code, err, written) = run(&[toml.to_str().unwrap(), "-D", "spp=2"]);
+    assert!(code == 2 && err.contains("-D") && !written, "{err}");
+    let (code, err, written) = run(&[x, "-D", "spp"]);
+    assert!(code == 2 && err.contains("NAME=VALUE") && !written, "{err}");
+}

@@ -50,6 +50,21 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
         );
         assert!(c.width >= 1 && c.height >= 1, "empty image accepted: {c:?}");
         assert!(c.forward().is_finite(), "no view direction accepted: {c:?}");
+        if let eyeadapt_scene::Projection::Shifted {
+            shift_x,
+            shift_y,
+            aperture_radius,
+            focus_distance,
+        } = c.projection
+        {
+            assert!(
+                shift_x.is_finite()
+                    && shift_y.is_finite()
+                    && aperture_radius >= 0.0
+                    && focus_distance > 0.0,
+                "bad shifted projection accepted: {c:?}"
+            );
+        }
     }
     for l in &scene.lights {
         let ok = light_ok(l, scene.textures.len());

@@ -28,6 +28,16 @@ pub enum Projection {
     /// Parallel rays along the view, from a rectangle of these half-extents (scene units)
     /// centred on the position (Mitsuba's `orthographic`); `fov_deg` is not used for them.
     Orthographic { half_width: f32, half_height: f32 },
+    /// A pinhole (`aperture_radius` 0) or thin lens whose image is shifted in its plane
+    /// (Mitsuba's `principal_point_offset_x`/`_y`, in fractions of the image's width and
+    /// height): pixel (x, y) looks where pixel (x + shift_x·width, y + shift_y·height) of the
+    /// centred view would.
+    Shifted {
+        shift_x: f32,
+        shift_y: f32,
+        aperture_radius: f32,
+        focus_distance: f32,
+    },
 }
 
 /// A camera looking from `position` towards `look_at`.

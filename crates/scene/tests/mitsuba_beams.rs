@@ -185,3 +185,34 @@ fn beams_and_textures_report_bad_input_at_the_element() {
         "{e}"
     );
 }
+
+#[test]
+fn principal_point_offsets_shift_perspective_views() {
+    let dir = folder("pp");
+    let sensor = |kind: &str, extra: &str| {
+        format!(
+            "<sensor type=\"{kind}\"><float name=\"fov\" value=\"40\"/>{extra}<float name=\"principal_point_offset_x\" value=\"0.25\"/><float name=\"principal_point_offset_y\" value=\"-0.1\"/></sensor><emitter type=\"constant\"/>"
+        )
+    };
+    let s = load_in(&dir, &sensor("perspective", "")).unwrap();
+    assert_eq!(
+        s.camera.unwrap().projection,
+        eyeadapt_scene::Projection::Shifted {
+            shift_x: 0.25,
+            shift_y: -0.1,
+            aperture_radius: 0.0,
+            focus_distance: 1.0
+        }
+    );
+    // Mitsuba's thin lens and orthographic sensors have no principal point: an unknown
+    // parameter.
+    let lens = "<float name=\"aperture_radius\" value=\"0.2\"/><float name=\"focus_distance\" value=\"5\"/>";
+    let e = load_in(&dir, &sensor("thinlens", lens))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("principal_point_offset_x"), "{e}");
+    let e = load_in(&dir, &sensor("orthographic", ""))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("principal_point_offset_x"), "{e}");
+}

@@ -56,11 +56,46 @@ impl View {
     #[inline]
     pub fn ray_dir(&self, basis: (Vec3A, Vec3A, Vec3A), x: f32, y: f32) -> Vec3A {
         let (r, u, f) = basis;
+        let (sx, sy) = self.screen(x, y);
+        (f + r * sx + u * sy).normalize()
+    }
+
+    /// The point of the plane one unit along the view that image position (x, y) looks at,
+    /// as (right, up) offsets; a shifted projection moves it by its shift.
+    #[inline]
+    fn screen(&self, x: f32, y: f32) -> (f32, f32) {
+        let (dx, dy) = match self.projection {
+            Projection::Shifted {
+                shift_x, shift_y, ..
+            } => (shift_x * self.width as f32, shift_y * self.height as f32),
+            _ => (0.0, 0.0),
+        };
         let tan = (self.fov_deg.to_radians() * 0.5).tan();
         let aspect = self.width as f32 / self.height as f32;
-        let sx = (2.0 * x / self.width as f32 - 1.0) * tan * aspect;
-        let sy = (1.0 - 2.0 * y / self.height as f32) * tan;
-        (f + r * sx + u * sy).normalize()
+        let sx = (2.0 * (x + dx) / self.width as f32 - 1.0) * tan * aspect;
+        let sy = (1.0 - 2.0 * (y + dy) / self.height as f32) * tan;
+        (sx, sy)
+    }
+
+    /// A thin lens of `aperture_radius` focused at `focus_distance`: the ray from a uniform
+    /// point of the aperture disc (2-D sample `lens`) through where the pinhole ray `d`
+    /// (through the plane one unit along the view) crosses the plane in focus.
+    #[inline]
+    fn lens_ray(
+        &self,
+        basis: (Vec3A, Vec3A, Vec3A),
+        d: Vec3A,
+        aperture_radius: f32,
+        focus_distance: f32,
+        lens: [f32; 2],
+    ) -> (Vec3A, Vec3A) {
+        let (r, u, _) = basis;
+        let origin = Vec3A::from(self.position);
+        let focus = origin + d * focus_distance;
+        let rad = aperture_radius * lens[0].sqrt();
+        let (s, c) = (2.0 * std::f32::consts::PI * lens[1]).sin_cos();
+        let o = origin + r * (rad * c) + u * (rad * s);
+        (o, (focus - o).normalize())
     }
 
     /// The camera ray through image position (x, y) (as [`View::ray_dir`]): origin and unit
@@ -81,17 +116,27 @@ impl View {
                 aperture_radius,
                 focus_distance,
             } => {
-                let tan = (self.fov_deg.to_radians() * 0.5).tan();
-                let aspect = self.width as f32 / self.height as f32;
-                let sx = (2.0 * x / self.width as f32 - 1.0) * tan * aspect;
-                let sy = (1.0 - 2.0 * y / self.height as f32) * tan;
-                // Where the pinhole ray of this pixel crosses the plane in focus.
-                let focus = origin + (f + r * sx + u * sy) * focus_distance;
-                // A uniform point of the aperture disc.
-                let rad = aperture_radius * lens[0].sqrt();
-                let (s, c) = (2.0 * std::f32::consts::PI * lens[1]).sin_cos();
-                let o = origin + r * (rad * c) + u * (rad * s);
-                (o, (focus - o).normalize())
+                let (sx, sy) = self.screen(x, y);
+                self.lens_ray(
+                    basis,
+                    f + r * sx + u * sy,
+                    aperture_radius,
+                    focus_distance,
+                    lens,
+                )
+            }
+            Projection::Shifted {
+                aperture_radius,
+                focus_distance,
+                ..
+            } => {
+                let (sx, sy) = self.screen(x, y);
+                let d = f + r * sx + u * sy;
+                if aperture_radius > 0.0 {
+                    self.lens_ray(basis, d, aperture_radius, focus_distance, lens)
+                } else {
+                    (origin, d.normalize())
+                }
             }
             Projection::Orthographic {
                 half_width,
@@ -111,9 +156,11 @@ impl View {
         if z <= 0.0 {
             return false;
         }
-        let tan = (self.fov_deg.to_radians() * 0.5).tan();
-        let aspect = self.width as f32 / self.height as f32;
-        (d.dot(r) / z).abs() <= tan * aspect && (d.dot(u) / z).abs() <= tan
+        // The image's corners, in the plane one unit along the view.
+        let (x0, y0) = self.screen(0.0, self.height as f32);
+        let (x1, y1) = self.screen(self.width as f32, 0.0);
+        let (sx, sy) = (d.dot(r) / z, d.dot(u) / z);
+        (x0..=x1).contains(&sx) && (y0..=y1).contains(&sy)
     }
 }
 
@@ -199,7 +246,13 @@ pub fn render_with_progress(
     let splats = settings.filter != PixelFilter::Box;
     // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
     let band = 2 * reach + 1;
-    let thin_lens = matches!(view.projection, Projection::ThinLens { .. });
+    let thin_lens = match view.projection {
+        Projection::ThinLens { .. } => true,
+        Projection::Shifted {
+            aperture_radius, ..
+        } => aperture_radius > 0.0,
+        _ => false,
+    };
     let render_pixel = |x: usize, y: usize, splat: &mut [(DVec3, f64)]| -> PixelAcc {
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
         // The aperture has its own stream, so pinhole renders keep their samples.

@@ -67,8 +67,10 @@ fn a_projector_lights_a_plane_facing_it_with_pi_scale_e_inside_its_frustum() {
             vec![red_green()],
         ),
     ] {
-        let mut s = Scene::default();
-        s.textures = textures;
+        let mut s = Scene {
+            textures,
+            ..Scene::default()
+        };
         floor(&mut s);
         s.lights.push(Light::Projector {
             position: Vec3::new(0.0, 0.0, 1.0),
@@ -142,8 +144,10 @@ fn a_projector_lights_a_plane_facing_it_with_pi_scale_e_inside_its_frustum() {
 fn a_textured_spot_throws_its_image_across_the_cone() {
     // Cone 45° (tan 1), one unit above the floor: uv = ½ + ½·(x, −y) on the floor; inside the
     // beam width the intensity is I·tex / d², the irradiance I·tex·cos θ / d².
-    let mut s = Scene::default();
-    s.textures = vec![red_green()];
+    let mut s = Scene {
+        textures: vec![red_green()],
+        ..Scene::default()
+    };
     floor(&mut s);
     s.lights.push(Light::TexturedSpot {
         position: Vec3::new(0.0, 0.0, 1.0),
@@ -222,7 +226,7 @@ fn a_textured_area_light_delivers_its_mean_radiance_under_its_centre() {
             (i / 128) as f32 / 128.0 + 1.0 / 256.0,
         );
         if let Some(ls) = data.lights.sample(Vec3A::ZERO, Some(Vec3A::Z), 0.5, [a, b]) {
-            sum += glam::DVec3::from(Vec3::from(ls.li * ls.wi.z / ls.pdf).as_dvec3());
+            sum += Vec3::from(ls.li * ls.wi.z / ls.pdf).as_dvec3();
         }
     }
     let e = sum / n as f64;

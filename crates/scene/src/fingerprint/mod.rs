@@ -328,6 +328,18 @@ impl Feed for Camera {
                 half_width.feed(h);
                 half_height.feed(h);
             }
+            Projection::Shifted {
+                shift_x,
+                shift_y,
+                aperture_radius,
+                focus_distance,
+            } => {
+                tag(h, 3);
+                shift_x.feed(h);
+                shift_y.feed(h);
+                aperture_radius.feed(h);
+                focus_distance.feed(h);
+            }
         }
     }
 }

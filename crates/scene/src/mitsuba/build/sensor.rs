@@ -53,6 +53,7 @@ impl<'t> Builder<'t> {
         self.float(o, "near_clip");
         self.float(o, "far_clip");
         let lens = self.lens(o);
+        let shift = self.principal_point(o);
         let (width, height) = match self.nested(o, "film") {
             Some(f) => self.film(f),
             None => (768, 576),
@@ -88,6 +89,12 @@ impl<'t> Builder<'t> {
                 half_width: left.length() as f32,
                 half_height: (up.length() / aspect) as f32,
             },
+            _ if shift != (0.0, 0.0) => Projection::Shifted {
+                shift_x: shift.0,
+                shift_y: shift.1,
+                aperture_radius: lens.map_or(0.0, |l| l.0),
+                focus_distance: lens.map_or(1.0, |l| l.1),
+            },
             Some((aperture_radius, focus_distance)) => Projection::ThinLens {
                 aperture_radius,
                 focus_distance,
@@ -103,6 +110,31 @@ impl<'t> Builder<'t> {
             height,
             projection,
         });
+    }
+
+    /// `principal_point_offset_x`/`_y` of a perspective sensor (0): the image's shift in its
+    /// plane, in fractions of its width and height (Mitsuba's thinlens and orthographic
+    /// sensors have none).
+    fn principal_point(&mut self, o: &'t Obj) -> (f32, f32) {
+        if o.kind != "perspective" {
+            return (0.0, 0.0);
+        }
+        let mut get = |name: &str| match self.float(o, name) {
+            Some(x) if x.is_finite() && x.abs() <= 1e3 => x as f32,
+            Some(x) => {
+                let at = self.prop(o, name).map_or(o.at, |p| p.at);
+                self.error(
+                    at,
+                    format!("{}: {name} {x} must be finite, within ±1000", o.describe()),
+                );
+                0.0
+            }
+            None => 0.0,
+        };
+        (
+            get("principal_point_offset_x"),
+            get("principal_point_offset_y"),
+        )
     }
 
     /// `thinlens`: `aperture_radius` and `focus_distance`, both needed (as in Mitsuba). A
