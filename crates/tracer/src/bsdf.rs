@@ -406,4 +406,4 @@ impl Bsdf {
 
 #[cfg(test)]
 #[path = "bsdf_tests.rs"]
-mod tests;
+pub(crate) mod tests;

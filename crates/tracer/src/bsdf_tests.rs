@@ -201,71 +201,75 @@ fn sampling_is_consistent_with_eval_and_pdf() {
     }
 }
 
-/// Pearson's χ² between sampled directions and the pdf integrated over the bins of a
-/// (cos θ, φ) grid of the sphere; bins expecting fewer than 5 samples are pooled. The bound
-/// is the χ² quantile's normal approximation at about 1e-4 significance.
 #[test]
 fn sampled_directions_follow_the_pdf_chi2() {
+    for b in smooth_lobed() {
+        assert_sampling_follows_pdf(&b, wo(), 11);
+    }
+}
+
+/// Pearson's χ² between `n` directions sampled from `b` at `wo` (stream `key`) and the pdf
+/// integrated over the bins of a (cos θ, φ) grid of the sphere; bins expecting fewer than 5
+/// samples are pooled. The bound is the χ² quantile's normal approximation at about 1e-4
+/// significance. Also checks that the samples `b` rejects are the pdf's missing mass.
+pub(crate) fn assert_sampling_follows_pdf(b: &Bsdf, wo: Vec3A, key: u64) {
     const NT: usize = 20;
     const NP: usize = 40;
     const SUB: usize = 16;
-    let wo = wo();
     let n = 200_000u32;
-    for b in smooth_lobed() {
-        let mut observed = vec![0f64; NT * NP];
-        let key = hash_key(&[11]);
-        let mut total = 0.0;
-        for i in 0..n {
-            let mut s = SampleStream::new(key, i);
-            let ul = s.next_1d();
-            if let Some(bs) = b.sample(wo, ul, s.next_2d()) {
-                observed[bin(bs.wi, NT, NP)] += 1.0;
-                total += 1.0;
+    let mut observed = vec![0f64; NT * NP];
+    let key = hash_key(&[key]);
+    let mut total = 0.0;
+    for i in 0..n {
+        let mut s = SampleStream::new(key, i);
+        let ul = s.next_1d();
+        if let Some(bs) = b.sample(wo, ul, s.next_2d()) {
+            observed[bin(bs.wi, NT, NP)] += 1.0;
+            total += 1.0;
+        }
+    }
+    // The pdf over each bin, by a SUB × SUB midpoint rule in (cos θ, φ).
+    let mut expected = vec![0f64; NT * NP];
+    let (dz, dp) = (2.0 / NT as f64, 2.0 * std::f64::consts::PI / NP as f64);
+    for (k, e) in expected.iter_mut().enumerate() {
+        let (it, ip) = (k / NP, k % NP);
+        for a in 0..SUB {
+            for c in 0..SUB {
+                let z = -1.0 + dz * (it as f64 + (a as f64 + 0.5) / SUB as f64);
+                let p = dp * (ip as f64 + (c as f64 + 0.5) / SUB as f64);
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let wi = Vec3A::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
+                *e += b.pdf(wo, wi) as f64 * dz * dp / (SUB * SUB) as f64;
             }
         }
-        // The pdf over each bin, by a SUB × SUB midpoint rule in (cos θ, φ).
-        let mut expected = vec![0f64; NT * NP];
-        let (dz, dp) = (2.0 / NT as f64, 2.0 * std::f64::consts::PI / NP as f64);
-        for (k, e) in expected.iter_mut().enumerate() {
-            let (it, ip) = (k / NP, k % NP);
-            for a in 0..SUB {
-                for c in 0..SUB {
-                    let z = -1.0 + dz * (it as f64 + (a as f64 + 0.5) / SUB as f64);
-                    let p = dp * (ip as f64 + (c as f64 + 0.5) / SUB as f64);
-                    let r = (1.0 - z * z).max(0.0).sqrt();
-                    let wi = Vec3A::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
-                    *e += b.pdf(wo, wi) as f64 * dz * dp / (SUB * SUB) as f64;
-                }
-            }
-            *e *= n as f64;
-        }
-        // Samples the BSDF rejects are the missing mass: compare to the pdf's own mass.
-        let mass: f64 = expected.iter().sum();
-        assert!(
-            (mass - total).abs() < 0.02 * n as f64,
-            "{b:?}: {mass} vs {total}"
-        );
-        let (mut chi2, mut dof, mut pool_o, mut pool_e) = (0.0, 0usize, 0.0, 0.0);
-        for (o, e) in observed.iter().zip(&expected) {
-            if *e < 5.0 {
-                pool_o += o;
-                pool_e += e;
-            } else {
-                chi2 += (o - e) * (o - e) / e;
-                dof += 1;
-            }
-        }
-        if pool_e >= 5.0 {
-            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        *e *= n as f64;
+    }
+    // Samples the BSDF rejects are the missing mass: compare to the pdf's own mass.
+    let mass: f64 = expected.iter().sum();
+    assert!(
+        (mass - total).abs() < 0.02 * n as f64,
+        "{b:?} at {wo}: {mass} vs {total}"
+    );
+    let (mut chi2, mut dof, mut pool_o, mut pool_e) = (0.0, 0usize, 0.0, 0.0);
+    for (o, e) in observed.iter().zip(&expected) {
+        if *e < 5.0 {
+            pool_o += o;
+            pool_e += e;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
             dof += 1;
         }
-        let bound = dof as f64 + 3.7 * (2.0 * dof as f64).sqrt() + 10.0;
-        assert!(dof > 10, "{b:?}: too few bins ({dof})");
-        assert!(
-            chi2 < bound,
-            "{b:?}: χ² {chi2:.1} over {dof} bins (bound {bound:.1})"
-        );
     }
+    if pool_e >= 5.0 {
+        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        dof += 1;
+    }
+    let bound = dof as f64 + 3.7 * (2.0 * dof as f64).sqrt() + 10.0;
+    assert!(dof > 10, "{b:?}: too few bins ({dof})");
+    assert!(
+        chi2 < bound,
+        "{b:?} at {wo}: χ² {chi2:.1} over {dof} bins (bound {bound:.1})"
+    );
 }
 
 fn bin(w: Vec3A, nt: usize, np: usize) -> usize {
