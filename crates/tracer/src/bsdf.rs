@@ -365,7 +365,14 @@ impl Bsdf {
             return None;
         }
         let wi = match *self {
-            Bsdf::Diffuse { .. } => cosine_hemisphere(u),
+            Bsdf::Diffuse { reflectance } => {
+                // `eval` and `pdf` of the sample, without their dispatch.
+                let wi = cosine_hemisphere(u);
+                if wi.z <= 0.0 {
+                    return None;
+                }
+                return BsdfSample::of_lobe(wi, wi.z * FRAC_1_PI, || reflectance * FRAC_1_PI);
+            }
             Bsdf::Mirror { eta, k, specular } => {
                 let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
                 let weight = fresnel_conductor3(wo.z, eta, k) * specular;

@@ -23,7 +23,7 @@
 use crate::film::View;
 use crate::integrator::{Origin, PathSettings, power_heuristic, trace};
 use crate::panes::shadow_transmittance;
-use crate::sampler::{SampleStream, hash_key};
+use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
@@ -141,14 +141,14 @@ pub fn eye_sensor_until(
     } else {
         hash_key(&[settings.seed, 0xE7E_5E45, 1, frame as u64])
     };
-    let replicate_keys: [u64; EYE_REPLICATES] =
-        std::array::from_fn(|b| hash_key(&[key, 0x4E9_11CA, b as u64]));
+    let replicate_seeds: [StreamSeeds; EYE_REPLICATES] =
+        std::array::from_fn(|b| StreamSeeds::new(hash_key(&[key, 0x4E9_11CA, b as u64])));
     let eye = Vec3A::from(view.position);
     let basis = view.basis();
     let (r, u, axis) = basis;
     let one = |i: u32| -> Option<Vec3A> {
         let b = i as usize % EYE_REPLICATES;
-        let mut s = SampleStream::new(replicate_keys[b], i / EYE_REPLICATES as u32);
+        let mut s = SampleStream::seeded(&replicate_seeds[b], i / EYE_REPLICATES as u32);
         let u_pick = s.next_1d();
         let _ = s.next_1d();
         let u_light = s.next_2d();
@@ -295,8 +295,9 @@ pub fn eye_direct_per_light(
                 Some(*acc)
             })
             .collect();
+        let seeds = StreamSeeds::new(key);
         for i in 0..samples {
-            let mut s = SampleStream::new(key, i);
+            let mut s = SampleStream::seeded(&seeds, i);
             let u0 = s.next_1d();
             let _ = s.next_1d();
             let u = s.next_2d();
@@ -335,10 +336,10 @@ pub fn eye_direct_per_light(
     }
     if let Some(env) = &lights.env {
         // The environment's directions drawn from its own density, each seen unless occluded.
-        let key = hash_key(&[seed, 0xD0_0042]);
+        let seeds = StreamSeeds::new(hash_key(&[seed, 0xD0_0042]));
         let mut sum = 0.0f64;
         for i in 0..samples {
-            let Some(s) = env.sample(SampleStream::new(key, i).next_2d()) else {
+            let Some(s) = env.sample(SampleStream::seeded(&seeds, i).next_2d()) else {
                 continue;
             };
             let kern = (1.0 + s.wi.dot(axis)) * 0.25;

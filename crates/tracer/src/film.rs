@@ -10,7 +10,7 @@
 //! then added into the image one row after another, in row order, so the sums (and bits) do
 //! not depend on the thread count. The AOVs stay per-pixel means.
 use crate::integrator::{Origin, PathSettings, trace};
-use crate::sampler::{SampleStream, hash_key};
+use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use eyeadapt_scene::{PixelFilter, Projection};
 use glam::{DVec3, Vec3, Vec3A};
@@ -255,14 +255,17 @@ pub fn render_with_progress(
     };
     let render_pixel = |x: usize, y: usize, splat: &mut [(DVec3, f64)]| -> PixelAcc {
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
+        let seeds = StreamSeeds::new(key);
         // The aperture has its own stream, so pinhole renders keep their samples.
-        let lens_key = thin_lens.then(|| hash_key(&[key, 0x1E45]));
+        let lens_seeds = thin_lens.then(|| StreamSeeds::new(hash_key(&[key, 0x1E45])));
         let mut acc = PixelAcc::default();
         for i in 0..settings.spp {
-            let mut s = SampleStream::new(key, i);
+            let mut s = SampleStream::seeded(&seeds, i);
             // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
             let j = s.next_2d();
-            let lens = lens_key.map_or([0.5; 2], |k| SampleStream::new(k, i).next_2d());
+            let lens = lens_seeds
+                .as_ref()
+                .map_or([0.5; 2], |k| SampleStream::seeded(k, i).next_2d());
             let (origin, d) = view.ray(basis, x as f32 + j[0], y as f32 + j[1], lens);
             let p = trace(
                 scene,

@@ -296,11 +296,22 @@ impl Geometry {
     }
 
     /// The surface at `hit` of the ray from `origin` along `dir`: world-space position,
-    /// geometric and shading normals, UV, ∂p/∂u, vertex colour, material and light.
+    /// geometric and shading normals, UV, ∂p/∂u, vertex colour, material and light. Without
+    /// `parameterisation` (nothing in the scene reads them) UV, ∂p/∂u, ∂p/∂v and the colours
+    /// are left zero.
     #[inline]
-    pub fn interaction(&self, origin: Vec3A, dir: Vec3A, hit: &Hit) -> SurfaceInteraction {
+    pub fn interaction(
+        &self,
+        origin: Vec3A,
+        dir: Vec3A,
+        hit: &Hit,
+        parameterisation: bool,
+    ) -> SurfaceInteraction {
         let inst = &self.instances[hit.instance as usize];
         let attr = &self.attributes[inst.mesh as usize];
+        if !parameterisation && !attr.has_normals() {
+            return self.flat_interaction(origin, dir, hit, inst);
+        }
         let (accel, ray) = match &self.levels {
             Levels::Flat(a) => (a, Ray::new(origin, dir, 0.0, f32::INFINITY)),
             Levels::Two { meshes, .. } => {
@@ -325,12 +336,54 @@ impl Geometry {
         si.instance = hit.instance;
         si.prim = hit.prim;
         si.material = inst.material;
-        si.light = if inst.light_base == u32::MAX {
+        si.light = self.light_of_hit(inst, hit);
+        si
+    }
+
+    /// [`Geometry::interaction`] of a triangle without vertex normals when nothing reads the
+    /// parameterisation: the shading normal is the geometric one, no barycentrics are needed.
+    #[inline]
+    fn flat_interaction(
+        &self,
+        origin: Vec3A,
+        dir: Vec3A,
+        hit: &Hit,
+        inst: &InstanceData,
+    ) -> SurfaceInteraction {
+        // The normals exactly as `interpolate` and the transform in `interaction` give them.
+        let (ng, ns) = match &self.levels {
+            Levels::Flat(a) => {
+                let ng = a.info[hit.slot as usize].ng;
+                (ng, ng)
+            }
+            Levels::Two { meshes, .. } => {
+                let n =
+                    inst.normal_to_world * meshes[inst.mesh as usize].info[hit.slot as usize].ng;
+                let ng = (n * inst.winding).normalize();
+                let ns = n.normalize_or_zero();
+                (ng, if ns == Vec3A::ZERO { ng } else { ns })
+            }
+        };
+        SurfaceInteraction {
+            t: hit.t,
+            p: origin + dir * hit.t,
+            ng,
+            ns,
+            instance: hit.instance,
+            prim: hit.prim,
+            material: inst.material,
+            light: self.light_of_hit(inst, hit),
+            ..SurfaceInteraction::default()
+        }
+    }
+
+    #[inline]
+    fn light_of_hit(&self, inst: &InstanceData, hit: &Hit) -> u32 {
+        if inst.light_base == u32::MAX {
             u32::MAX
         } else {
             self.light_of[(inst.light_base + hit.prim) as usize]
-        };
-        si
+        }
     }
 
     /// Approximate heap size: BVHs, triangles, per-vertex attributes and instance records.

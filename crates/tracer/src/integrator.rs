@@ -184,7 +184,9 @@ pub fn trace(
             path.escape(&scene.lights);
             break;
         };
-        let si = scene.geometry.interaction(path.o, path.d, &hit);
+        let si = scene
+            .geometry
+            .interaction(path.o, path.d, &hit, scene.parameterisation);
         path.shade_hit(scene, &si);
         if path.depth + 1 >= max_depth {
             break;

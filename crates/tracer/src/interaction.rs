@@ -65,6 +65,12 @@ impl Attributes {
         }
     }
 
+    /// True when the mesh has vertex normals (its shading normal is interpolated).
+    #[inline]
+    pub fn has_normals(&self) -> bool {
+        !self.normals.is_empty()
+    }
+
     pub fn memory_bytes(&self) -> usize {
         self.indices.len() * 12
             + self.normals.len() * 16

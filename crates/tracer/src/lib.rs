@@ -55,6 +55,6 @@ pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::lights::LightSet;
 pub use crate::material::Materials;
-pub use crate::sampler::{SampleStream, hash_key, mix64};
+pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;
 pub use obvhs::BvhBuildParams;

@@ -45,6 +45,40 @@ struct Entry {
     blend: Option<(Param<f32>, [u32; 2])>,
     /// A texture that multiplies `emission` (a textured area emitter's radiance).
     emission_texture: Option<TextureId>,
+    /// The BSDF seen from the back and from the front, built once, when it is the same at
+    /// every hit: no texture, blend, mask, normal or bump map, no anisotropy
+    /// ([`Materials::fixed`]).
+    fixed: Option<[Bsdf; 2]>,
+}
+
+/// True when `e`'s BSDF is the same at every hit: a leaf without wrappers whose parameters
+/// are constants, isotropic. Only the common BSDFs are recognised; any other is built per
+/// hit, which is always right.
+fn is_constant(e: &Entry) -> bool {
+    let plain = e.blend.is_none() && e.normal_map.is_none() && e.bump.is_none();
+    let c = |p: &Param<f32>| p.constant().is_some();
+    let rgb = |p: &Param<Rgb>| p.constant().is_some();
+    plain
+        && e.opacity.is_empty()
+        && match &e.bsdf {
+            SceneBsdf::Diffuse { reflectance } => rgb(reflectance),
+            SceneBsdf::Conductor {
+                alpha,
+                alpha_v: None,
+                specular_reflectance,
+                ..
+            } => c(alpha) && rgb(specular_reflectance),
+            SceneBsdf::Plastic {
+                reflectance, alpha, ..
+            } => rgb(reflectance) && c(alpha),
+            SceneBsdf::Dielectric { .. } | SceneBsdf::ThinDielectric { .. } => true,
+            SceneBsdf::RoughDielectric {
+                alpha,
+                alpha_v: None,
+                ..
+            } => c(alpha),
+            _ => false,
+        }
 }
 
 /// The flattened material a hit scatters with (a blend's chosen child).
@@ -64,6 +98,7 @@ impl Entry {
             bump: None,
             blend: None,
             emission_texture: None,
+            fixed: None,
         };
         root.flatten(&m.bsdf, textures, nodes)
     }
@@ -154,11 +189,58 @@ impl Materials {
         for &(m, t) in &scene.emission_textures {
             entries[m.0 as usize].emission_texture = Some(t);
         }
-        Materials {
+        let mut materials = Materials {
             entries,
             nodes,
             textures: scene.textures.clone(),
+        };
+        materials.fix_constant_bsdfs();
+        materials
+    }
+
+    /// Builds once the BSDFs that do not depend on the hit, so that shading them is a copy.
+    fn fix_constant_bsdfs(&mut self) {
+        let probe = SurfaceInteraction::default();
+        let fixed: Vec<Option<[Bsdf; 2]>> = self
+            .entries
+            .iter()
+            .chain(&self.nodes)
+            .map(|e| {
+                let leaf = Leaf(e);
+                is_constant(e).then(|| {
+                    [
+                        self.bsdf(leaf, &probe, false),
+                        self.bsdf(leaf, &probe, true),
+                    ]
+                })
+            })
+            .collect();
+        let (a, b) = fixed.split_at(self.entries.len());
+        for (e, f) in self.entries.iter_mut().zip(a) {
+            e.fixed = *f;
         }
+        for (e, f) in self.nodes.iter_mut().zip(b) {
+            e.fixed = *f;
+        }
+    }
+
+    /// The BSDF of material `material` seen from the front (`front`) or the back of the
+    /// geometric normal, when it is the same at every hit; `None` when it must be built per
+    /// hit ([`Materials::select`], [`Materials::shading_normal`], [`Materials::bsdf`]). A
+    /// fixed material's hit also has the mesh's shading normal, opacity 1, an unchanged lobe
+    /// number and an isotropic BSDF.
+    #[inline]
+    pub fn fixed(&self, material: u32, front: bool) -> Option<&Bsdf> {
+        self.entries[material as usize]
+            .fixed
+            .as_ref()
+            .map(|b| &b[front as usize])
+    }
+
+    /// True when some hit's BSDF reads the surface's parameterisation (UV, ∂p/∂u, ∂p/∂v,
+    /// vertex or face colours): a texture anywhere, or a material that is not fixed.
+    pub fn read_parameterisation(&self) -> bool {
+        !self.textures.is_empty() || self.entries.iter().any(|e| e.fixed.is_none())
     }
 
     /// The flattened material `si` scatters with, and the lobe-choice number `u_lobe`
@@ -309,6 +391,9 @@ impl Materials {
     #[inline]
     pub fn bsdf(&self, leaf: Leaf<'_>, si: &SurfaceInteraction, front: bool) -> Bsdf {
         let e = leaf.0;
+        if let Some(b) = &e.fixed {
+            return b[front as usize];
+        }
         if e.one_sided && !front {
             return Bsdf::diffuse(Vec3A::ZERO);
         }

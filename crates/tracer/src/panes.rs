@@ -56,7 +56,9 @@ pub fn shadow_transmittance(
         let Some(hit) = scene.geometry.intersect_with(scratch, o, wi, left) else {
             return tr;
         };
-        let si = scene.geometry.interaction(o, wi, &hit);
+        let si = scene
+            .geometry
+            .interaction(o, wi, &hit, scene.parameterisation);
         let v = Vertex::new(scene, &si, -wi, &VertexSamples::middle());
         let Some(t) = v.pane_transmittance() else {
             return Vec3A::ZERO;

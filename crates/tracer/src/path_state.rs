@@ -103,12 +103,10 @@ impl VertexSamples {
 
     #[inline]
     pub fn draw(s: &mut SampleStream) -> VertexSamples {
-        let pick = s.next_1d();
-        let lobe = s.next_1d();
-        let rr = s.next_1d();
-        let mask = s.next_1d();
-        let bsdf = s.next_2d();
-        let light_next = s.next_2d();
+        // Two whole chunks (the caller starts a group): what eight `next_1d` calls draw.
+        let [pick, lobe, rr, mask] = s.next_4d();
+        let [b0, b1, l0, l1] = s.next_4d();
+        let (bsdf, light_next) = ([b0, b1], [l0, l1]);
         VertexSamples {
             pick,
             lobe,
@@ -125,10 +123,27 @@ impl Vertex {
     /// blend's child chosen with `u.lobe`).
     #[inline]
     pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A, u: &VertexSamples) -> Vertex {
-        let (leaf, lobe) = scene.materials.select(si, u.lobe);
         // Shading frame on the viewer's side; the BSDF knows which side that is.
         let front = si.ng.dot(wo) > 0.0;
         let ng = if front { si.ng } else { -si.ng };
+        if let Some(&bsdf) = scene.materials.fixed(si.material, front) {
+            // What the general case below gives for such a material, without building it.
+            let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
+            let frame = Frame::new(ns);
+            return Vertex {
+                ng,
+                frame,
+                wo_l: frame.to_local(wo),
+                pane: scene.thin_panes && is_pane(&bsdf, 1.0),
+                bsdf,
+                opacity: 1.0,
+                lobe: u.lobe,
+                terminator: None,
+                p_front: offset(si.p, ng),
+                p_back: offset(si.p, -ng),
+            };
+        }
+        let (leaf, lobe) = scene.materials.select(si, u.lobe);
         let (ns, terminator) = scene.materials.shading_normal(leaf, si, wo);
         let ns = if ns.dot(ng) < 0.0 { -ns } else { ns };
         let bsdf = scene.materials.bsdf(leaf, si, front);

@@ -147,10 +147,64 @@ fn rev_sobol4(rev_index: u32) -> [u32; 4] {
 /// of the variance is small) use plain hashing, which costs a fraction of the scrambling.
 pub const LOW_DISCREPANCY_CHUNKS: u32 = 6;
 
+/// The scrambling seeds of one low-discrepancy chunk: the chunk's seed (its index shuffle)
+/// and one Owen-scrambling seed per dimension.
+#[derive(Clone, Copy, Debug, Default)]
+struct ChunkSeeds {
+    chunk: u64,
+    dims: [u32; 4],
+}
+
+impl ChunkSeeds {
+    #[inline]
+    fn new(key: u64, chunk: u32) -> ChunkSeeds {
+        let seed = chunk_seed(key, chunk);
+        // Each coordinate needs an independent scramble: seeds that are functions of one
+        // another (e.g. affine) make the scrambled point non-uniform in 4-D and bias estimates.
+        ChunkSeeds {
+            chunk: seed,
+            dims: std::array::from_fn(|d| mix64(seed ^ ((d as u64 + 1) << 56)) as u32),
+        }
+    }
+}
+
+#[inline]
+fn chunk_seed(key: u64, chunk: u32) -> u64 {
+    mix64(key ^ (chunk as u64).wrapping_mul(0xd1b5_4a32_d192_ed03))
+}
+
+/// The seeds of a key's low-discrepancy chunks, which depend on the key alone: computed once
+/// and shared by all the samples of a pixel (or of the eye sensor), they spare each sample
+/// five hashes per chunk. [`SampleStream::seeded`] gives the same numbers as
+/// [`SampleStream::new`].
+#[derive(Clone, Copy, Debug)]
+pub struct StreamSeeds {
+    key: u64,
+    chunks: [ChunkSeeds; LOW_DISCREPANCY_CHUNKS as usize],
+}
+
+impl StreamSeeds {
+    pub fn new(key: u64) -> StreamSeeds {
+        StreamSeeds {
+            key,
+            chunks: std::array::from_fn(|c| ChunkSeeds::new(key, c as u32)),
+        }
+    }
+}
+
+/// Where a stream's chunk seeds come from.
+#[derive(Clone, Copy, Debug)]
+enum Seeds<'a> {
+    /// Hashed from the key when a chunk is entered.
+    Key(u64),
+    /// Computed once for all the samples of the key.
+    Shared(&'a StreamSeeds),
+}
+
 /// The random numbers of one sample (one camera path, one sensor path).
 #[derive(Clone, Copy, Debug)]
-pub struct SampleStream {
-    key: u64,
+pub struct SampleStream<'a> {
+    seeds: Seeds<'a>,
     index: u32,
     /// `index.reverse_bits()`, computed once per sample.
     rev_index: u32,
@@ -160,10 +214,21 @@ pub struct SampleStream {
     values: [u32; 4],
 }
 
-impl SampleStream {
+impl<'a> SampleStream<'a> {
     pub fn new(key: u64, index: u32) -> Self {
+        Self::start(Seeds::Key(key), index)
+    }
+
+    /// [`SampleStream::new`] for `seeds`' key, with its chunk seeds computed already.
+    #[inline]
+    pub fn seeded(seeds: &'a StreamSeeds, index: u32) -> Self {
+        Self::start(Seeds::Shared(seeds), index)
+    }
+
+    #[inline]
+    fn start(seeds: Seeds<'a>, index: u32) -> Self {
         let mut s = SampleStream {
-            key,
+            seeds,
             index,
             rev_index: index.reverse_bits(),
             dim: 0,
@@ -179,21 +244,26 @@ impl SampleStream {
     #[inline]
     fn enter_chunk(&mut self, chunk: u32) {
         self.chunk = chunk;
-        let seed = mix64(self.key ^ (chunk as u64).wrapping_mul(0xd1b5_4a32_d192_ed03));
+        let key = match self.seeds {
+            Seeds::Key(key) => key,
+            Seeds::Shared(s) => s.key,
+        };
         if chunk >= LOW_DISCREPANCY_CHUNKS {
-            let a = mix64(seed ^ self.index as u64);
+            let a = mix64(chunk_seed(key, chunk) ^ self.index as u64);
             let b = mix64(a);
             self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32];
             return;
         }
+        let seeds = match self.seeds {
+            Seeds::Key(key) => ChunkSeeds::new(key, chunk),
+            Seeds::Shared(s) => s.chunks[chunk as usize],
+        };
         // Shuffle the index (nested uniform scramble = reverse, Laine-Karras, reverse) and look
         // the point up, both in the reversed domain; then Owen-scramble each coordinate.
-        let rev_shuffled = laine_karras(self.rev_index, seed as u32);
+        let rev_shuffled = laine_karras(self.rev_index, seeds.chunk as u32);
         let rv = rev_sobol4(rev_shuffled);
-        // Each coordinate needs an independent scramble: seeds that are functions of one
-        // another (e.g. affine) make the scrambled point non-uniform in 4-D and bias estimates.
-        for (d, (out, x)) in self.values.iter_mut().zip(rv).enumerate() {
-            *out = laine_karras(x, mix64(seed ^ ((d as u64 + 1) << 56)) as u32).reverse_bits();
+        for ((out, x), seed) in self.values.iter_mut().zip(rv).zip(seeds.dims) {
+            *out = laine_karras(x, seed).reverse_bits();
         }
     }
 
@@ -214,6 +284,19 @@ impl SampleStream {
         self.dim += 1;
         // 24 bits so the result is exactly representable and strictly below 1.
         (v >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+
+    /// The next chunk's four values (what four calls of [`SampleStream::next_1d`] after
+    /// [`SampleStream::start_group`] give), at once.
+    #[inline]
+    pub fn next_4d(&mut self) -> [f32; 4] {
+        self.align(4);
+        let chunk = self.dim / 4;
+        if chunk != self.chunk {
+            self.enter_chunk(chunk);
+        }
+        self.dim += 4;
+        self.values.map(|v| (v >> 8) as f32 * (1.0 / 16_777_216.0))
     }
 
     /// The next 2-D point; always drawn from dimensions (0,1) or (2,3) of a chunk.
@@ -248,6 +331,41 @@ mod tests {
         }
         assert_eq!(a, draw(hash_key(&[1, 3, 17, 5]), 9));
         assert_ne!(a, draw(hash_key(&[1, 3, 5, 17]), 9));
+    }
+
+    #[test]
+    fn seeded_streams_draw_what_new_streams_draw() {
+        for k in 0..20u64 {
+            let key = hash_key(&[k, 7]);
+            let seeds = StreamSeeds::new(key);
+            for i in [0u32, 1, 2, 15, 16, 1000, u32::MAX] {
+                let mut a = SampleStream::new(key, i);
+                let mut b = SampleStream::seeded(&seeds, i);
+                for d in 0..(4 * LOW_DISCREPANCY_CHUNKS + 12) {
+                    if d % 5 == 0 {
+                        a.start_group();
+                        b.start_group();
+                    }
+                    assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits(), "{k} {i} {d}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn four_at_once_are_four_in_turn() {
+        let key = hash_key(&[9, 9]);
+        for i in 0..50 {
+            let mut a = SampleStream::new(key, i);
+            let mut b = SampleStream::new(key, i);
+            a.next_1d();
+            b.next_1d();
+            for _ in 0..(LOW_DISCREPANCY_CHUNKS + 3) {
+                a.start_group();
+                let one = [a.next_1d(), a.next_1d(), a.next_1d(), a.next_1d()];
+                assert_eq!(one.map(f32::to_bits), b.next_4d().map(f32::to_bits));
+            }
+        }
     }
 
     #[test]

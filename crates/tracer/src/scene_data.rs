@@ -13,6 +13,9 @@ pub struct SceneData {
     pub lights: LightSet,
     /// Some material is a thin pane, which shadow rays pass (`panes.rs`).
     pub thin_panes: bool,
+    /// Some hit's shading reads the surface's UV, ∂p/∂u or colours
+    /// ([`Materials::read_parameterisation`]): hits compute them only then.
+    pub parameterisation: bool,
     /// Centre and radius of the bounding sphere of all geometry.
     pub center: Vec3A,
     pub radius: f32,
@@ -39,7 +42,9 @@ impl SceneData {
         );
         let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures);
         let thin_panes = materials.has_thin_panes();
+        let parameterisation = materials.read_parameterisation();
         SceneData {
+            parameterisation,
             geometry,
             materials,
             lights,
