@@ -58,10 +58,14 @@ def value_of(body, name, text, default=None):
     m = re.search(rf'<integer\s+name="{name}"\s+value="([^"]+)"\s*/>', body)
     if not m:
         return default
-    v = m.group(1)
+    return resolve(m.group(1), text, default)
+
+
+def resolve(v, text, default=None):
+    """v, or the value of the <default> of the `$param` it names."""
     if v.startswith("$"):
         d = re.search(rf'<default\s+name="{v[1:]}"\s+value="([^"]+)"\s*/>', text)
-        v = d.group(1) if d else default
+        return d.group(1) if d else default
     return v
 
 
@@ -76,7 +80,7 @@ def patch(path):
     dirs = []
     text = flatten(path, dirs)
     s0, s1, attrs, body = element(text, "sampler", path)
-    kind = re.search(r'type="([^"]+)"', attrs).group(1)
+    kind = resolve(re.search(r'type="([^"]+)"', attrs).group(1), text, "independent")
     sampler = (f'<sampler type="$bench_sampler"><integer name="sample_count" value="$bench_spp"/>'
                f'<integer name="seed" value="$bench_seed"/>{without(body, "sample_count", "seed")}</sampler>')
     text = text[:s0] + sampler + text[s1:]

@@ -25,6 +25,10 @@ Runs       --runs rounds per phase; in each round the renderers run one after th
            load on the shared machine hits them alike; every figure is a median over rounds.
            Phase 1: eyeadapt, then Mitsuba in-process with each sampler (render call).
            Phase 2: eyeadapt process, Mitsuba process with the best sampler (whole process).
+CPU time   user + system seconds of each whole process (both renderers) and of Mitsuba's render
+           calls (this process's, during the call): on a machine shared with other work a
+           renderer's wall time depends on how much of the cores it gets, its CPU time much less.
+           "samples per CPU-second" compares the whole processes by it.
 Agreement  the mean of all eyeadapt images against the Mitsuba reference, per channel, in
            percent, with eyeadapt's standard error: "agree" when every channel is within 1 %.
 
@@ -42,6 +46,8 @@ import sys
 import tempfile
 import time
 from types import SimpleNamespace
+
+import resource
 
 import numpy as np
 
@@ -83,23 +89,34 @@ def parse_args():
 
 # ----- renderers ---------------------------------------------------------------------------
 
+def cpu_seconds(who):
+    r = resource.getrusage(who)
+    return r.ru_utime + r.ru_stime
+
+
+def run_timed(cmd):
+    """(completed process, wall seconds, CPU seconds of the child). Children run one at a time,
+    so the growth of RUSAGE_CHILDREN is this child's."""
+    c0, t0 = cpu_seconds(resource.RUSAGE_CHILDREN), time.perf_counter()
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    return r, time.perf_counter() - t0, cpu_seconds(resource.RUSAGE_CHILDREN) - c0
+
+
 def eyeadapt_render(a, sc, wh, spp, seed, tmp):
-    """(image, render-call seconds, whole-process seconds, stats)."""
+    """(image, render-call seconds, whole-process seconds, whole-process CPU seconds, stats)."""
     out = os.path.join(tmp, f"ea-{seed}")
     stats = out + ".json"
     cmd = [a.eyeadapt, "render", sc.eyeadapt, "--spp", str(spp), "--seed", str(seed),
            "--width", str(wh[0]), "--height", str(wh[1]), "--max-depth", str(sc.max_depth),
            "--rr-depth", "5", "--out", out, "--stats-json", stats]
-    t0 = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
+    r, wall, cpu = run_timed(cmd)
     if r.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed:\n{r.stderr.strip()}")
     with open(stats) as f:
         st = json.load(f)
     img = read_exr_rgb(os.path.join(out, "raw.exr"))
     shutil.rmtree(out, ignore_errors=True)
-    return img, float(st["seconds"]), wall, st
+    return img, float(st["seconds"]), wall, cpu, st
 
 
 class MitsubaScene:
@@ -124,30 +141,31 @@ class MitsubaScene:
                              f"{params['bench_spp']}: choose an spp it accepts")
 
     def render(self, spp, seed):
-        t0 = time.perf_counter()
+        """(image, seconds); self.cpu: the CPU seconds of this process during the call."""
+        c0, t0 = cpu_seconds(resource.RUSAGE_SELF), time.perf_counter()
         img = self.mi.render(self.scene, spp=spp, seed=seed)
         arr = np.array(img, dtype=np.float32)  # waits for the (llvm) kernels
-        return arr[..., :3].astype(np.float64), time.perf_counter() - t0
+        dt = time.perf_counter() - t0
+        self.cpu = cpu_seconds(resource.RUSAGE_SELF) - c0
+        return arr[..., :3].astype(np.float64), dt
 
     def version(self):
         return f"{self.mi.__version__} {VARIANT}"
 
 
 def mitsuba_process(xml, dirs, params, out):
-    """(image, whole-process seconds) of Mitsuba's command-line renderer."""
+    """(image, whole-process seconds, CPU seconds) of Mitsuba's command-line renderer."""
     cmd = [os.path.join(os.path.dirname(sys.executable), "mitsuba"), "-m", VARIANT,
            "-a", ";".join(dirs), "-o", out]
     for k, v in params.items():
         cmd += ["-D", f"{k}={v}"]
     cmd.append(xml)
-    t0 = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
+    r, wall, cpu = run_timed(cmd)
     if r.returncode != 0 or not os.path.exists(out):
         raise RuntimeError(f"{' '.join(cmd)} failed:\n{(r.stderr or r.stdout).strip()[-2000:]}")
     img = read_exr_rgb(out)
     os.remove(out)
-    return img, wall
+    return img, wall, cpu
 
 
 # ----- one scene ---------------------------------------------------------------------------
@@ -181,23 +199,25 @@ def run_scene(a, sc, tmp):
     mits = {s: MitsubaScene(xml, dirs, dict(params, bench_sampler=s)) for s in a.samplers}
     for m in mits.values():
         m.render(a.spp, seed=999_999)  # compiles the kernels
-    ea_img, _, _, stats = eyeadapt_render(a, sc, (w, h), a.spp, 999_999, tmp)  # warms the caches
+    ea_img, _, _, _, stats = eyeadapt_render(a, sc, (w, h), a.spp, 999_999, tmp)  # warms the caches
     if ea_img.shape != ref.shape:
         raise SystemExit(f"{sc.name}: eyeadapt rendered {ea_img.shape}, Mitsuba {ref.shape}")
 
     r = dict(name=sc.name, note=sc.note, width=w, height=h, spp=a.spp, max_depth=sc.max_depth,
-             triangles=stats.get("triangles"), ea=dict(render=[], process=[], mse1=[], mse2=[]),
-             mi={s: dict(render=[], mse=[]) for s in a.samplers}, mi_proc=dict(process=[], mse=[]))
+             triangles=stats.get("triangles"), ea=dict(render=[], process=[], cpu=[], mse1=[], mse2=[]),
+             mi={s: dict(render=[], cpu=[], mse=[]) for s in a.samplers},
+             mi_proc=dict(process=[], cpu=[], mse=[]))
     ea_images = []
     for run in range(a.runs):  # phase 1: render call
         seed = 7919 * (run + 1)
-        img, t, _, _ = eyeadapt_render(a, sc, (w, h), a.spp, seed, tmp)
+        img, t, _, _, _ = eyeadapt_render(a, sc, (w, h), a.spp, seed, tmp)
         ea_images.append(img)
         r["ea"]["render"].append(t)
         r["ea"]["mse1"].append(mse(img, ref, ref_var))
         for s, m in mits.items():
             img, t = m.render(a.spp, seed)
             r["mi"][s]["render"].append(t)
+            r["mi"][s]["cpu"].append(m.cpu)
             r["mi"][s]["mse"].append(mse(img, ref, ref_var))
         log(f"{sc.name}: render-call round {run + 1}/{a.runs}")
     del mits
@@ -209,12 +229,14 @@ def run_scene(a, sc, tmp):
     mitsuba_process(xml, dirs, dict(mparams, bench_seed=999_999), out)  # warms the caches
     for run in range(a.runs):  # phase 2: whole process
         seed = 104_729 * (run + 1)
-        img, _, wall, _ = eyeadapt_render(a, sc, (w, h), a.spp, seed, tmp)
+        img, _, wall, cpu, _ = eyeadapt_render(a, sc, (w, h), a.spp, seed, tmp)
         ea_images.append(img)
         r["ea"]["process"].append(wall)
+        r["ea"]["cpu"].append(cpu)
         r["ea"]["mse2"].append(mse(img, ref, ref_var))
-        img, wall = mitsuba_process(xml, dirs, dict(mparams, bench_seed=seed), out)
+        img, wall, cpu = mitsuba_process(xml, dirs, dict(mparams, bench_seed=seed), out)
         r["mi_proc"]["process"].append(wall)
+        r["mi_proc"]["cpu"].append(cpu)
         r["mi_proc"]["mse"].append(mse(img, ref, ref_var))
         log(f"{sc.name}: whole-process round {run + 1}/{a.runs}")
 
@@ -237,6 +259,7 @@ def figures(r):
     ea, mb, mp = r["ea"], r["mi"][r["best"]], r["mi_proc"]
     f = dict(ea_render=med(ea["render"]), ea_process=med(ea["process"]),
              mi_render=med(mb["render"]), mi_process=med(mp["process"]),
+             ea_cpu=med(ea["cpu"]), mi_cpu=med(mp["cpu"]), mi_render_cpu=med(mb["cpu"]),
              ea_rmse1=median_mse(ea["mse1"]) ** 0.5, ea_rmse2=median_mse(ea["mse2"]) ** 0.5,
              mi_rmse=median_mse(mb["mse"]) ** 0.5, mi_rmse_proc=median_mse(mp["mse"]) ** 0.5)
     for k in ("ea_render", "ea_process", "mi_render", "mi_process"):
@@ -252,16 +275,15 @@ def g(x):
     return f"{x:.4g}"
 
 
-def print_report(a, results, mi_version):
-    spp_note = f"{a.spp} spp, {a.size} px wide, medians of {a.runs} rounds"
+def print_summary(a, results, mi_version):
     print(f"eyeadapt against Mitsuba {mi_version} {VARIANT} (samplers tried: {', '.join(a.samplers)}), "
-          f"{spp_note}, {os.cpu_count()} cores, every renderer on all of them. Reference: Mitsuba, "
-          f"independent sampler, 2 × {a.ref_spp} spp. How each figure is timed: "
-          "scripts/bench/suite.py.\n")
+          f"{a.spp} spp, {a.size} px wide, medians of {a.runs} rounds, {os.cpu_count()} cores, "
+          f"every renderer on all of them. Reference: Mitsuba, independent sampler, 2 × "
+          f"{a.ref_spp} spp. How each figure is timed: scripts/bench/suite.py.\n")
     print("| scene | size | max depth | triangles | Mitsuba sampler | samples/s render call | "
-          "samples/s whole process | efficiency render call | efficiency whole process | "
-          "means eyeadapt vs Mitsuba (R, G, B) | agree (1 %) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "samples/s whole process | samples per CPU-second whole process | efficiency render "
+          "call | efficiency whole process | means eyeadapt vs Mitsuba (R, G, B) | agree (1 %) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in results:
         f = figures(r)
         diff = ", ".join(f"{d:+.2f}" for d in r["diff_pct"])
@@ -269,34 +291,42 @@ def print_report(a, results, mi_version):
         print(f"| {r['name']} | {r['width']}×{r['height']} | {r['max_depth']} | {r['triangles']} | "
               f"{r['best']} | {f['ea_msps_render'] / f['mi_msps_render']:.3f} | "
               f"{f['ea_msps_process'] / f['mi_msps_process']:.3f} | "
+              f"{f['mi_cpu'] / f['ea_cpu']:.3f} | "
               f"{f['ea_eff_render'] / f['mi_eff_render']:.3f} | "
               f"{f['ea_eff_process'] / f['mi_eff_process']:.3f} | {diff} % (± {se:.2f}) | "
               f"{'yes' if r['agree'] else 'NO'} |")
     print("\nRatios are eyeadapt / Mitsuba (> 1: eyeadapt faster or more efficient); "
           "efficiency = 1/(RMSE² · seconds). Triangles: eyeadapt's count (it tessellates "
           "rectangles, cubes and spheres).\n")
-    print("| scene | renderer | render call s | whole process s | Msamples/s render call | "
-          "Msamples/s whole process | RMSE | efficiency render call | efficiency whole process |")
-    print("|---|---|---|---|---|---|---|---|---|")
+
+
+def print_details(a, results):
+    print("| scene | renderer | render call s | whole process s | CPU s render call / whole "
+          "process | Msamples/s render call | Msamples/s whole process | RMSE | efficiency "
+          "render call | efficiency whole process |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in results:
         f = figures(r)
+        n = r["width"] * r["height"] * r["spp"]
         print(f"| {r['name']} | eyeadapt | {f['ea_render']:.3f} | {f['ea_process']:.3f} | "
-              f"{f['ea_msps_render']:.3f} | {f['ea_msps_process']:.3f} | "
+              f"- / {f['ea_cpu']:.3f} | {f['ea_msps_render']:.3f} | {f['ea_msps_process']:.3f} | "
               f"{f['ea_rmse1']:.5f} / {f['ea_rmse2']:.5f} | {g(f['ea_eff_render'])} | "
               f"{g(f['ea_eff_process'])} |")
         for s in a.samplers:
             m = r["mi"][s]
             t, rm = statistics.median(m["render"]), median_mse(m["mse"]) ** 0.5
-            n = r["width"] * r["height"] * r["spp"]
             proc = s == r["best"]
             pt = f"{f['mi_process']:.3f}" if proc else "-"
+            pc = f"{f['mi_cpu']:.3f}" if proc else "-"
             pm = f"{f['mi_msps_process']:.3f}" if proc else "-"
             pr = f" / {f['mi_rmse_proc']:.5f}" if proc else ""
             pe = g(f["mi_eff_process"]) if proc else "-"
-            print(f"| {r['name']} | Mitsuba {s} | {t:.3f} | {pt} | {n / t / 1e6:.3f} | {pm} | "
+            print(f"| {r['name']} | Mitsuba {s} | {t:.3f} | {pt} | "
+                  f"{statistics.median(m['cpu']):.3f} / {pc} | {n / t / 1e6:.3f} | {pm} | "
                   f"{rm:.5f}{pr} | {g(1 / (rm ** 2 * t))} | {pe} |")
     print("\nRMSE: of the render-call images / of the whole-process images (the Mitsuba "
-          "process ran with the best sampler only).")
+          "process ran with the best sampler only). eyeadapt's render call has no CPU time "
+          "of its own (its --stats-json has wall seconds only).")
     for r in results:
         print(f"\n- {r['name']}: {r['note']}")
 
@@ -324,7 +354,8 @@ def main():
             log(f"{sc.name}: done in {time.time() - t0:.0f} s")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    print_report(a, results, mi.__version__)
+    print_summary(a, results, mi.__version__)
+    print_details(a, results)
     if a.json:
         with open(a.json, "w") as f:
             json.dump(dict(results=results, args=vars(a), mitsuba=mi.__version__), f, indent=1)
