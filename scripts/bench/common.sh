@@ -1,5 +1,5 @@
 # Shared by the benchmark scripts (sourced, not run): the eyeadapt binary, the Python venv and
-# BENCHMARKS.md.
+# the Markdown sections of docs/benchmarks/*.md (BENCHMARKS.md is their index).
 
 # Sets BIN to $1 if given, else builds the release binary of the repository $REPO.
 eyeadapt_binary() {

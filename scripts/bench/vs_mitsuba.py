@@ -73,7 +73,7 @@ def parse_args():
     p.add_argument("--json", default=None, help="also write all results to this JSON file")
     p.add_argument("--markdown", default=None,
                    help="append the printed report, with date, commit and machine load, as a new "
-                        "section of this Markdown file (e.g. BENCHMARKS.md)")
+                        "section of this Markdown file (e.g. docs/benchmarks/vs-mitsuba-cornell.md)")
     p.add_argument("--label", default="run", help="title of the --markdown section")
     a = p.parse_args()
     a.spp = [int(x) for x in a.spp.split(",")]
@@ -246,7 +246,10 @@ class Tee:
         self.out.flush()
 
 
-def append_markdown(path, label, text, started, binary_sha):
+def append_markdown(path, label, text, started, binary_sha, script="scripts/bench/vs-mitsuba.sh",
+                    fenced=True):
+    """Appends `text` as a section: date, commit, binary, load and the command line (without
+    private paths), then the text, in a ```text block unless it is Markdown (fenced=False)."""
     def git(*args):
         r = subprocess.run(["git", "-C", REPO, *args], capture_output=True, text=True)
         return r.stdout.strip() if r.returncode == 0 else "?"
@@ -257,13 +260,16 @@ def append_markdown(path, label, text, started, binary_sha):
         x = argv.pop(0)
         if x in ("--eyeadapt", "--markdown", "--json", "--cache"):
             argv = argv[1:]  # private paths, not part of the recipe
+        elif os.path.isabs(x) and os.path.exists(x):
+            shown.append(os.path.basename(x.rstrip("/")).upper())  # a local checkout: DIR
         else:
             shown.append(x)
-    cmd = " ".join(["scripts/bench/vs-mitsuba.sh", *shown])
+    cmd = " ".join([script, *shown])
+    body = f"```text\n{text.strip()}\n```" if fenced else text.strip()
     with open(path, "a") as f:
         f.write(f"\n## {label}\n\n{started} UTC, repository at {git('rev-parse', '--short', 'HEAD')}"
                 f"{dirty}, eyeadapt binary sha256 {binary_sha[:12]}, load average at the end "
-                f"{load}.\n\n`{cmd}`\n\n```text\n{text.strip()}\n```\n")
+                f"{load}.\n\n`{cmd}`\n\n{body}\n")
 
 
 def main():
