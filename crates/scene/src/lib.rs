@@ -62,7 +62,7 @@ pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::pixel_filter::PixelFilter;
 pub use crate::principled::{Principled, PrincipledThin};
-pub use crate::scene::{RenderDefaults, Scene};
+pub use crate::scene::{CutoutShadows, RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};
 pub use crate::texture::{Bitmap, FilterType, Image, Texture, TextureId, WrapMode};
 pub use crate::toml_scene::{load_scene, load_scene_str};

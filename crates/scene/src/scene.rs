@@ -19,6 +19,22 @@ pub struct RenderDefaults {
     pub filter: Option<crate::PixelFilter>,
 }
 
+/// What shadow rays (light samples, the eye sensor's direct terms) make of the surfaces light
+/// passes straight through: masks' holes and null surfaces. Thin panes pass shadow rays in
+/// both cases.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CutoutShadows {
+    /// Shadow rays pass them with their expected transmittance (1 − opacity), so a cut-out
+    /// leaf casts a leaf-shaped shadow in the sun; a path that crosses one does not count the
+    /// crossing as a segment (Mitsuba 3's `volpath`; glTF renderers' alpha cut-outs).
+    #[default]
+    Transmit,
+    /// Shadow rays stop at them and a crossing counts as a segment, as in Mitsuba 3's `path`
+    /// and `direct` integrators: light through a hole arrives by BSDF sampling only (the same
+    /// image for area lights and environments), and a point, spot or sun behind one is black.
+    Block,
+}
+
 /// A loaded scene: object-space meshes placed by instances, materials whose parameters may
 /// point into the texture table, delta lights, the environment, the camera and its path.
 #[derive(Clone, Debug, Default)]
@@ -41,6 +57,8 @@ pub struct Scene {
     /// the material's `emission` is then the texture's scale). A material appears at most once.
     pub emission_textures: Vec<(MaterialId, TextureId)>,
     pub render: RenderDefaults,
+    /// Whether shadow rays pass masks' holes and null surfaces.
+    pub cutout_shadows: CutoutShadows,
     /// The scene's own camera path, already validated.
     pub camera_path: Option<CameraPath>,
     /// Warnings met while loading (missing MTL, unknown material, …), already formatted.

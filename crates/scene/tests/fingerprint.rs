@@ -147,6 +147,7 @@ fn full() -> Scene {
             seed: Some(1),
             filter: Some(PixelFilter::GAUSSIAN),
         },
+        cutout_shadows: Default::default(),
         camera_path: Some(CameraPath {
             fps: 24.0,
             keyframes: vec![
@@ -527,6 +528,9 @@ fn changes() -> Vec<(&'static str, Change)> {
             }
         }),
         ("keyframe.fov_deg", |s| key(s, 0).fov_deg = Some(40.0)),
+        ("cutout_shadows", |s| {
+            s.cutout_shadows = eyeadapt_scene::CutoutShadows::Block
+        }),
         ("animation", |s| s.animation = None),
         ("animation.parent", |s| anim(s).tree.nodes[1].parent = None),
         ("animation.rest", |s| {

@@ -1,6 +1,8 @@
 //! Mitsuba 3 XML: the BSDFs built around or beside others (`blendbsdf`, `bumpmap`, `null`),
-//! `pplastic`, and anisotropic roughness.
-use eyeadapt_scene::{Bsdf, Distribution, Param, Rgb, Scene, SceneError, load_mitsuba_str};
+//! what shadow rays make of masks and null surfaces, `pplastic`, and anisotropic roughness.
+use eyeadapt_scene::{
+    Bsdf, CutoutShadows, Distribution, Param, Rgb, Scene, SceneError, load_mitsuba_str,
+};
 use std::path::Path;
 
 fn load(bsdf: &str) -> Result<Scene, SceneError> {
@@ -155,4 +157,27 @@ fn anisotropic_roughness_takes_textures_and_needs_both_halves() {
         r#"<bsdf type="roughconductor" id="b"><float name="alpha" value="0.2"/><float name="alpha_u" value="0.2"/><float name="alpha_v" value="0.1"/></bsdf>"#,
     );
     assert!(e.contains("either `alpha`"), "{e}");
+}
+
+#[test]
+fn shadow_rays_stop_at_masks_as_the_integrator_does() {
+    // Mitsuba's `path` and `direct` test shadow rays against every surface (`ray_test`), and
+    // a file without an integrator gets eyeadapt's path tracer with the same rule; `volpath`
+    // passes them through masks' holes and null surfaces (`eval_null_transmission`).
+    let mask = r#"<bsdf type="mask" id="b"><float name="opacity" value="0.3"/><bsdf type="diffuse"/></bsdf>"#;
+    for (integrator, expect) in [
+        ("", CutoutShadows::Block),
+        (r#"<integrator type="path"/>"#, CutoutShadows::Block),
+        (r#"<integrator type="direct"/>"#, CutoutShadows::Block),
+        (r#"<integrator type="volpath"/>"#, CutoutShadows::Transmit),
+        (
+            r#"<integrator type="moment"><integrator type="volpath"/></integrator>"#,
+            CutoutShadows::Transmit,
+        ),
+    ] {
+        let s = load(&format!("{mask}{integrator}")).unwrap();
+        assert_eq!(s.cutout_shadows, expect, "{integrator:?}");
+    }
+    // TOML and glTF scenes (and scenes built in code) pass them.
+    assert_eq!(Scene::default().cutout_shadows, CutoutShadows::Transmit);
 }

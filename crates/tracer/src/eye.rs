@@ -22,9 +22,9 @@
 //! ignores the stratification and overstated the error 1.7–2.3× on the paper's scenes (issue 22).
 use crate::film::View;
 use crate::integrator::{Origin, PathSettings, power_heuristic, trace};
-use crate::panes::shadow_transmittance;
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
+use crate::shadow::shadow_transmittance;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -162,7 +162,7 @@ pub fn eye_sensor_until(
             let cos = ls.wi.dot(axis);
             let k = (1.0 + cos) * 0.25;
             let seen = k > 0.0 && (!settings.fov_only || view.in_frustum(basis, ls.wi));
-            // Through thin panes (a sun behind a window) with their transmittance.
+            // Through thin panes (a sun behind a window) and cut-outs with their transmittance.
             let tr = if seen {
                 shadow_transmittance(scene, &mut scene.geometry.scratch(), eye, ls.wi, ls.dist)
             } else {

@@ -188,13 +188,18 @@ pub fn trace(
             .geometry
             .interaction(path.o, path.d, &hit, scene.parameterisation);
         path.shade_hit(scene, &si);
-        if path.depth + 1 >= max_depth {
+        // At the depth limit the path ends, unless it may cross a see-through surface here
+        // (`shadow.rs`: a crossing is no segment).
+        let last = path.depth + 1 >= max_depth;
+        if last && !scene.see_through {
             break;
         }
         let u = VertexSamples::draw(s);
         let v = Vertex::new(scene, &si, -path.d, &u);
-        path.sample_light(scene, &mut scratch, &v, &u);
-        if !path.scatter(&v, &u) || !path.roulette(settings.rr_depth, u.rr) {
+        if !last {
+            path.sample_light(scene, &mut scratch, &v, &u);
+        }
+        if !path.scatter(&v, &u, last) || !path.roulette(settings.rr_depth, u.rr) {
             break;
         }
     }

@@ -2,7 +2,7 @@
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
 //! through a [`Distribution2D`]), a path tracer with next-event estimation and MIS
-//! ([`trace`]) whose shadow rays pass thin window panes (`panes.rs`), the film with its AOVs
+//! ([`trace`]) whose shadow rays pass thin window panes and cut-outs (`shadow.rs`), the film with its AOVs
 //! ([`render`] → [`Frame`]) and the eye-centred hemispherical sensor ([`eye_sensor`]).
 //!
 //! Build a [`SceneData`] once from an `eyeadapt_scene::Scene`, then render any number of
@@ -27,7 +27,6 @@ mod light_pick;
 mod lights;
 mod material;
 mod microfacet;
-mod panes;
 mod path_state;
 mod pplastic;
 mod principled;
@@ -35,6 +34,7 @@ mod principled_lobes;
 mod principled_thin;
 mod sampler;
 mod scene_data;
+mod shadow;
 mod texture;
 mod traverse;
 mod triangle;

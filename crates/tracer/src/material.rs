@@ -85,6 +85,18 @@ fn is_constant(e: &Entry) -> bool {
 #[derive(Clone, Copy)]
 pub struct Leaf<'m>(&'m Entry);
 
+impl Leaf<'_> {
+    /// Whether a shadow ray may pass this material somewhere: it is a thin pane, or it has
+    /// masks (a null surface is a mask of opacity 0) and `cutouts` pass shadow rays. (Not a
+    /// blend: only its leaves scatter.)
+    #[inline]
+    pub fn may_pass(self, cutouts: bool) -> bool {
+        self.0.blend.is_none()
+            && (matches!(self.0.bsdf, SceneBsdf::ThinDielectric { .. })
+                || (cutouts && !self.0.opacity.is_empty()))
+    }
+}
+
 impl Entry {
     fn new(m: &Material, textures: &[Texture], nodes: &mut Vec<Entry>) -> Entry {
         let root = Entry {
@@ -264,12 +276,41 @@ impl Materials {
         (Leaf(e), u_lobe)
     }
 
-    /// True when some material is a thin pane (`panes.rs`).
-    pub fn has_thin_panes(&self) -> bool {
+    /// Calls `f` with every flattened material `si` may scatter with and the probability
+    /// [`Materials::select`] chooses it with (through each blend, 1 − weight and weight).
+    /// Children chosen with probability 0 are left out.
+    #[inline]
+    pub fn leaves(&self, si: &SurfaceInteraction, mut f: impl FnMut(Leaf<'_>, f32)) {
+        self.leaves_below(&self.entries[si.material as usize], si, 1.0, &mut f);
+    }
+
+    fn leaves_below<'m>(
+        &'m self,
+        e: &'m Entry,
+        si: &SurfaceInteraction,
+        p: f32,
+        f: &mut impl FnMut(Leaf<'m>, f32),
+    ) {
+        match e.blend {
+            None => f(Leaf(e), p),
+            Some((weight, [a, b])) => {
+                let w = self.number(weight, si).clamp(0.0, 1.0);
+                for (child, q) in [(a, 1.0 - w), (b, w)] {
+                    if q > 0.0 {
+                        self.leaves_below(&self.nodes[child as usize], si, p * q, f);
+                    }
+                }
+            }
+        }
+    }
+
+    /// True when some material may let shadow rays through (`shadow.rs`): a thin pane, or,
+    /// when `cutouts` pass them, a mask or a null surface.
+    pub fn has_see_through(&self, cutouts: bool) -> bool {
         self.entries
             .iter()
             .chain(&self.nodes)
-            .any(|e| matches!(e.bsdf, SceneBsdf::ThinDielectric { .. }))
+            .any(|e| Leaf(e).may_pass(cutouts))
     }
 
     /// Index of the error material (for instances without one).

@@ -21,10 +21,11 @@ use crate::integrator::{
 };
 use crate::interaction::SurfaceInteraction;
 use crate::lights::LightSet;
+use crate::material::Leaf;
 use crate::microfacet::fresnel_refract;
-use crate::panes::{is_pane, shadow_transmittance};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
+use crate::shadow::shadow_transmittance;
 use glam::Vec3A;
 
 /// The state of a path between steps.
@@ -50,6 +51,8 @@ pub struct PathState {
     aovs: bool,
     /// True until the AOV vertex has scattered (every vertex so far was a delta event).
     specular_chain: bool,
+    /// The last scattering event went straight through a see-through surface (`shadow.rs`).
+    crossed: bool,
     /// Distance along the path to the current hit while `specular_chain` (the depth AOV).
     travelled: f32,
     pub out: PathSample,
@@ -72,8 +75,11 @@ pub struct Vertex {
     /// Ray origins just off the surface on the viewer's side and behind it.
     p_front: Vec3A,
     p_back: Vec3A,
-    /// A thin pane that shadow rays pass, in a scene that has them (`panes.rs`).
+    /// A thin pane that shadow rays pass (`shadow.rs`).
     pane: bool,
+    /// The mask's holes pass shadow rays (`CutoutShadows::Transmit`), so a path through one
+    /// is a crossing, not a segment (`shadow.rs`).
+    holes_pass: bool,
 }
 
 /// The random numbers of one vertex, in the sample stream's fixed order.
@@ -87,20 +93,6 @@ pub struct VertexSamples {
 }
 
 impl VertexSamples {
-    /// Numbers for a vertex that only a shadow ray sees (a pane, `panes.rs`): nothing is
-    /// sampled there, and a blend's child is the one at the middle of its weight interval.
-    #[inline]
-    pub(crate) fn middle() -> VertexSamples {
-        VertexSamples {
-            pick: 0.5,
-            lobe: 0.5,
-            rr: 0.5,
-            mask: 0.5,
-            bsdf: [0.5; 2],
-            light_next: [0.5; 2],
-        }
-    }
-
     #[inline]
     pub fn draw(s: &mut SampleStream) -> VertexSamples {
         // Two whole chunks (the caller starts a group): what eight `next_1d` calls draw.
@@ -123,18 +115,18 @@ impl Vertex {
     /// blend's child chosen with `u.lobe`).
     #[inline]
     pub fn new(scene: &SceneData, si: &SurfaceInteraction, wo: Vec3A, u: &VertexSamples) -> Vertex {
-        // Shading frame on the viewer's side; the BSDF knows which side that is.
         let front = si.ng.dot(wo) > 0.0;
-        let ng = if front { si.ng } else { -si.ng };
         if let Some(&bsdf) = scene.materials.fixed(si.material, front) {
-            // What the general case below gives for such a material, without building it.
+            // What `with_leaf` gives for such a material, without building it.
+            let ng = if front { si.ng } else { -si.ng };
             let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
             let frame = Frame::new(ns);
             return Vertex {
                 ng,
                 frame,
                 wo_l: frame.to_local(wo),
-                pane: scene.thin_panes && is_pane(&bsdf, 1.0),
+                pane: scene.see_through && matches!(bsdf, Bsdf::ThinDielectric { .. }),
+                holes_pass: false,
                 bsdf,
                 opacity: 1.0,
                 lobe: u.lobe,
@@ -144,6 +136,22 @@ impl Vertex {
             };
         }
         let (leaf, lobe) = scene.materials.select(si, u.lobe);
+        Vertex::with_leaf(scene, si, wo, leaf, lobe)
+    }
+
+    /// The surface `si` seen along `wo` scattering with `leaf` (one of its blend's children),
+    /// `lobe` the lobe-choice number left for it.
+    #[inline]
+    pub(crate) fn with_leaf(
+        scene: &SceneData,
+        si: &SurfaceInteraction,
+        wo: Vec3A,
+        leaf: Leaf<'_>,
+        lobe: f32,
+    ) -> Vertex {
+        // Shading frame on the viewer's side; the BSDF knows which side that is.
+        let front = si.ng.dot(wo) > 0.0;
+        let ng = if front { si.ng } else { -si.ng };
         let (ns, terminator) = scene.materials.shading_normal(leaf, si, wo);
         let ns = if ns.dot(ng) < 0.0 { -ns } else { ns };
         let bsdf = scene.materials.bsdf(leaf, si, front);
@@ -155,11 +163,17 @@ impl Vertex {
             Frame::new(ns)
         };
         let opacity = scene.materials.opacity(leaf, si);
+        let holes_pass = scene.cutouts_pass && opacity < 1.0;
+        // A masked pane passes shadow rays only where its holes do.
+        let pane = scene.see_through
+            && matches!(bsdf, Bsdf::ThinDielectric { .. })
+            && (opacity >= 1.0 || holes_pass);
         Vertex {
             ng,
             frame,
             wo_l: frame.to_local(wo),
-            pane: scene.thin_panes && is_pane(&bsdf, opacity),
+            pane,
+            holes_pass,
             // Principled lobes turn their own anisotropy to ∂p/∂u (`Bsdf::oriented`).
             bsdf: bsdf.oriented(&frame, si.dpdu),
             opacity,
@@ -176,23 +190,29 @@ impl Vertex {
         self.terminator.map_or(1.0, |t| t.factor(wi))
     }
 
-    /// The share of light a pane passes straight on towards the viewer (its transmittance
-    /// times 1 − 2R/(1 + R), as `sample_thin` transmits), or `None` when this is no pane.
+    /// The expected share of light this surface passes straight on towards the viewer, the
+    /// probability of a crossing times its weight (`shadow.rs`): 1 − opacity through holes
+    /// that pass shadow rays, plus opacity times a pane's transmittance (times
+    /// 1 − 2R/(1 + R), as `sample_thin` transmits). 0 for anything else.
     #[inline]
-    pub(crate) fn pane_transmittance(&self) -> Option<Vec3A> {
+    pub(crate) fn straight_through(&self) -> Vec3A {
+        let holes = if self.holes_pass {
+            1.0 - self.opacity
+        } else {
+            0.0
+        };
         match self.bsdf {
             Bsdf::ThinDielectric { eta, t, .. } if self.pane => {
                 let f = fresnel_refract(self.wo_l.z, eta).0;
-                Some(t * (1.0 - 2.0 * f / (1.0 + f)))
+                let pane = t * (1.0 - 2.0 * f / (1.0 + f));
+                if self.opacity >= 1.0 {
+                    pane
+                } else {
+                    pane * self.opacity + Vec3A::splat(holes)
+                }
             }
-            _ => None,
+            _ => Vec3A::splat(holes),
         }
-    }
-
-    /// The ray origin just behind the surface (seen from the viewer).
-    #[inline]
-    pub(crate) fn behind(&self) -> Vec3A {
-        self.p_back
     }
 
     /// The ray origin for leaving along `wi`, and whether that side is the viewer's.
@@ -222,6 +242,7 @@ impl PathState {
             ke: Vec3A::ZERO,
             aovs,
             specular_chain: true,
+            crossed: false,
             travelled: 0.0,
             out: PathSample::default(),
         }
@@ -311,8 +332,8 @@ impl PathState {
             return;
         }
         let wi_l = v.frame.to_local(ls.wi);
-        // Shadow rays pass thin panes (panes.rs) and stop at every other surface, as Mitsuba's
-        // path integrator does; light through glass or a mask's holes arrives by BSDF sampling.
+        // Shadow rays pass thin panes and, unless the scene blocks them there, masks' holes
+        // and null surfaces (shadow.rs); light through other glass arrives by BSDF sampling.
         let f_surface = v.bsdf.eval(v.wo_l, wi_l) * v.shadowing(ls.wi);
         let f = f_surface * v.opacity;
         if f.max_element() <= 0.0 {
@@ -340,9 +361,11 @@ impl PathState {
     }
 
     /// Continues the path along a BSDF sample at `v`, reflected or transmitted; false when
-    /// the path ends (no sample, or one on the wrong side of the geometric surface).
+    /// the path ends (no sample, or one on the wrong side of the geometric surface). At the
+    /// depth limit (`last`) only a crossing of a see-through surface continues: it is no
+    /// segment, and shadow rays counted what lies behind it.
     #[inline]
-    pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples) -> bool {
+    pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples, last: bool) -> bool {
         let through = u.mask >= v.opacity;
         let bs = if through {
             // Through a mask's hole: straight on, unweighted.
@@ -375,6 +398,24 @@ impl PathState {
         if (front != (bs.wi.z > 0.0) && !through) || wi.dot(v.ng) == 0.0 {
             return false;
         }
+        self.crossed = if through {
+            v.holes_pass
+        } else {
+            v.pane && bs.wi.z < 0.0
+        };
+        if self.crossed {
+            // Straight through a surface shadow rays cross too (a delta event, so the AOV
+            // vertex is not here): the path keeps the last scattering vertex's pdf, origin
+            // and normal for MIS, and its segment count.
+            self.beta *= bs.weight;
+            self.u_light = u.light_next;
+            self.o = from;
+            self.d = wi;
+            return true;
+        }
+        if last {
+            return false;
+        }
         if self.specular_chain && !bs.delta {
             self.specular_chain = false;
             self.out.albedo = self.beta * bs.weight;
@@ -383,13 +424,6 @@ impl PathState {
         }
         self.beta *= bs.weight;
         self.u_light = u.light_next;
-        if v.pane && bs.wi.z < 0.0 {
-            // Straight through a pane: shadow rays cross it too, so the path keeps the last
-            // scattering vertex's pdf, origin and normal for MIS, and its segment count.
-            self.o = from;
-            self.d = wi;
-            return true;
-        }
         self.prev = if bs.delta {
             Origin::Camera
         } else {
@@ -405,10 +439,11 @@ impl PathState {
         true
     }
 
-    /// Russian roulette once `rr_depth` segments are traced; false when the path ends.
+    /// Russian roulette once `rr_depth` segments are traced (not after a crossing, which is
+    /// no segment); false when the path ends.
     #[inline]
     pub fn roulette(&mut self, rr_depth: u32, u_rr: f32) -> bool {
-        if self.depth >= rr_depth {
+        if self.depth >= rr_depth && !self.crossed {
             let q = self.beta.max_element().min(0.95);
             if u_rr >= q {
                 return false;

@@ -4,18 +4,21 @@ use crate::envmap::Environment;
 use crate::geometry::{Built, Geometry};
 use crate::lights::LightSet;
 use crate::material::Materials;
-use eyeadapt_scene::{MaterialId, Scene};
+use eyeadapt_scene::{CutoutShadows, MaterialId, Scene};
 use glam::Vec3A;
 
 pub struct SceneData {
     pub geometry: Geometry,
     pub materials: Materials,
     pub lights: LightSet,
-    /// Some material is a thin pane, which shadow rays pass (`panes.rs`).
-    pub thin_panes: bool,
     /// Some hit's shading reads the surface's UV, ∂p/∂u or colours
     /// ([`Materials::read_parameterisation`]): hits compute them only then.
     pub parameterisation: bool,
+    /// Shadow rays pass masks' holes and null surfaces (`CutoutShadows::Transmit`).
+    pub cutouts_pass: bool,
+    /// Some material may let shadow rays through (a thin pane, or a mask when `cutouts_pass`;
+    /// `shadow.rs`). Without one, shadow rays are plain any-hit tests.
+    pub see_through: bool,
     /// Centre and radius of the bounding sphere of all geometry.
     pub center: Vec3A,
     pub radius: f32,
@@ -41,14 +44,16 @@ impl SceneData {
             scene.environment_map.as_ref(),
         );
         let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures);
-        let thin_panes = materials.has_thin_panes();
         let parameterisation = materials.read_parameterisation();
+        let cutouts_pass = scene.cutout_shadows == CutoutShadows::Transmit;
+        let see_through = materials.has_see_through(cutouts_pass);
         SceneData {
             parameterisation,
             geometry,
             materials,
             lights,
-            thin_panes,
+            cutouts_pass,
+            see_through,
             center,
             radius,
         }

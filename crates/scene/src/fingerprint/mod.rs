@@ -174,6 +174,7 @@ impl Feed for Scene {
             environment_map,
             emission_textures,
             render,
+            cutout_shadows,
             camera_path,
             warnings: _,
             animation,
@@ -193,6 +194,11 @@ impl Feed for Scene {
             t.0.feed(h);
         }
         render.feed(h);
+        // Nothing for the default (fingerprints of TOML and glTF scenes stay what they were).
+        match cutout_shadows {
+            crate::CutoutShadows::Transmit => {}
+            crate::CutoutShadows::Block => tag(h, 0xC5),
+        }
         camera_path.feed(h);
         animation.as_deref().feed(h);
     }

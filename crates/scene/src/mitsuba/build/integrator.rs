@@ -2,6 +2,7 @@
 //! with its path tracer (`moment`, `aov`, `ptracer`, and `volpath` in a scene without media),
 //! each with a warning at its element.
 use super::Builder;
+use crate::CutoutShadows;
 use crate::mitsuba::xml::Obj;
 
 impl<'t> Builder<'t> {
@@ -41,16 +42,19 @@ impl<'t> Builder<'t> {
             }
             "path" => self.path(o),
             // Without media Mitsuba's volpath computes what path does (its surface
-            // interactions are path's: BSDF sampling, emitter sampling, MIS, roulette).
+            // interactions are path's: BSDF sampling, emitter sampling, MIS, roulette), except
+            // that its shadow rays pass masks' holes and null surfaces and crossing one is not
+            // a segment.
             "volpath" if !self.has_media => {
                 self.warning(
                     o.at,
                     format!(
-                        "{}: the scene has no participating media, so eyeadapt renders it with its path integrator (the same image)",
+                        "{}: the scene has no participating media, so eyeadapt renders it with its path integrator, shadow rays passing masks and null surfaces (the same image)",
                         o.describe()
                     ),
                 );
                 self.path(o);
+                self.scene.cutout_shadows = CutoutShadows::Transmit;
             }
             "volpath" => self.error(
                 o.at,

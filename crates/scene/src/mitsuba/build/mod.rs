@@ -6,7 +6,7 @@
 use super::source::Sources;
 use super::xml::{ChildKind, Doc, Obj};
 use crate::diagnostic::{Diagnostic, Severity};
-use crate::{Light, MaterialId, Scene};
+use crate::{CutoutShadows, Light, MaterialId, Scene};
 use std::collections::{HashMap, HashSet};
 
 mod beam;
@@ -78,6 +78,9 @@ impl<'t> Builder<'t> {
             has_media: false,
             scene: Scene {
                 source: sources.main().to_path_buf(),
+                // Mitsuba's `path` and `direct` shadow rays stop at every surface; `volpath`
+                // (integrator.rs) lets them through masks' holes and null surfaces.
+                cutout_shadows: CutoutShadows::Block,
                 ..Scene::default()
             },
         }
