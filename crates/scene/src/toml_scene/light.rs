@@ -1,7 +1,10 @@
-//! `[[lights]]`: point, spot and sun (directional) lights.
+//! `[[lights]]`: point, spot (optionally carrying a `texture` across its beam, oriented by
+//! `up`) and sun (directional) lights.
 use super::Ctx;
+use super::TextureKind;
 use super::format::LightDef;
-use crate::Light;
+use crate::{Light, TextureId};
+use glam::{DMat3, Mat3, Vec3};
 use toml::Spanned;
 
 impl Ctx<'_> {
@@ -9,6 +12,20 @@ impl Ctx<'_> {
         let d = l.get_ref();
         let at = l.span().start;
         let kind = d.kind.get_ref().as_str();
+        if kind != "spot" {
+            if let Some(t) = &d.texture {
+                self.error(
+                    t.span().start,
+                    format!("{kind} light: key `texture` applies to a spot only"),
+                );
+            }
+            if let Some(v) = &d.up {
+                self.error(
+                    v.span().start,
+                    format!("{kind} light: key `up` applies to a spot with a `texture` only"),
+                );
+            }
+        }
         if kind == "sun" {
             return self.sun(d, at);
         }
@@ -76,12 +93,32 @@ impl Ctx<'_> {
                         format!("spot falloff_deg {falloff} exceeds cone_deg {cone}"),
                     );
                 }
-                Some(Light::Spot {
+                let beam = direction;
+                let direction = direction.normalize();
+                let Some(t) = &d.texture else {
+                    if let Some(v) = &d.up {
+                        self.error(
+                            v.span().start,
+                            "spot light: key `up` orients a `texture` and does nothing without one",
+                        );
+                    }
+                    return Some(Light::Spot {
+                        position,
+                        direction,
+                        intensity,
+                        cone_deg: cone,
+                        falloff_deg: falloff,
+                    });
+                };
+                let texture = self.beam_texture(t)?;
+                let frame = self.beam_frame(d, beam, at)?;
+                Some(Light::TexturedSpot {
                     position,
-                    direction: direction.normalize(),
+                    frame,
                     intensity,
                     cone_deg: cone,
                     falloff_deg: falloff,
+                    texture,
                 })
             }
             other => {
@@ -89,6 +126,37 @@ impl Ctx<'_> {
                 None
             }
         }
+    }
+
+    /// A spot's `texture`: any but vertex colours (a beam has no surface to read them on).
+    fn beam_texture(&mut self, t: &Spanned<String>) -> Option<TextureId> {
+        let id = self.texture_ref("spot light", "texture", t)?;
+        if self.texture_kind(id) == TextureKind::VertexColor {
+            self.error(
+                t.span().start,
+                format!("spot light: `texture` \"{}\" is a vertex_color texture, which a light cannot use (use a bitmap or checkerboard)", t.get_ref()),
+            );
+            return None;
+        }
+        Some(id)
+    }
+
+    /// The frame of a textured spot, as Mitsuba's `<lookat>` builds it: z along the beam
+    /// (`direction`, normalised here), x = `up` × z normalised (`up` default +y), y = z × x.
+    fn beam_frame(&mut self, d: &LightDef, direction: Vec3, at: usize) -> Option<Mat3> {
+        let up = d.up.as_ref().map_or(Vec3::Y, |u| self.vec3(u, "spot up"));
+        let z = direction.as_dvec3().normalize();
+        let x = up.as_dvec3().cross(z);
+        if x.length() < 1e-9 {
+            let at = d.up.as_ref().map_or(at, |u| u.span().start);
+            self.error(
+                at,
+                "spot light: `up` is parallel to the beam (or zero); give an `up` across it to orient the texture",
+            );
+            return None;
+        }
+        let x = x.normalize();
+        Some(DMat3::from_cols(x, z.cross(x), z).as_mat3())
     }
 
     /// A directional light: `direction` (the way the light travels) and `irradiance`.
