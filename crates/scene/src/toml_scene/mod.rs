@@ -174,9 +174,12 @@ impl Ctx<'_> {
         }
     }
 
-    /// The kind of a loaded texture.
+    /// The kind of a `[[textures]]` texture (the textures an MTL file adds later are `Other`).
     fn texture_kind(&self, id: TextureId) -> TextureKind {
-        self.texture_kinds[id.0 as usize]
+        self.texture_kinds
+            .get(id.0 as usize)
+            .copied()
+            .unwrap_or(TextureKind::Other)
     }
 
     fn positive(&mut self, v: &Spanned<f32>, what: &str) -> f32 {
