@@ -3,7 +3,7 @@
 use super::Ctx;
 use super::TextureKind;
 use super::format::LightDef;
-use crate::{Light, TextureId};
+use crate::{Light, Rgb, TextureId};
 use glam::{DMat3, Mat3, Vec3};
 use toml::Spanned;
 
@@ -60,72 +60,76 @@ impl Ctx<'_> {
                     intensity,
                 })
             }
-            "spot" => {
-                let direction = match (&d.look_at, &d.direction) {
-                    (Some(t), None) => self.vec3(t, "look_at") - position,
-                    (None, Some(v)) => self.vec3(v, "direction"),
-                    _ => {
-                        self.error(
-                            at,
-                            "spot light needs exactly one of `look_at` or `direction`",
-                        );
-                        return None;
-                    }
-                };
-                if direction.length() < 1e-9 {
-                    self.error(at, "spot light direction is zero");
-                    return None;
-                }
-                let cone = d
-                    .cone_deg
-                    .as_ref()
-                    .map_or(20.0, |c| self.positive(c, "cone_deg"));
-                let falloff = d
-                    .falloff_deg
-                    .as_ref()
-                    .map_or(cone * 0.75, |c| self.positive(c, "falloff_deg"));
-                if cone > 90.0 {
-                    self.error(at, format!("spot cone_deg {cone} must be at most 90"));
-                }
-                if falloff > cone {
-                    self.error(
-                        at,
-                        format!("spot falloff_deg {falloff} exceeds cone_deg {cone}"),
-                    );
-                }
-                let beam = direction;
-                let direction = direction.normalize();
-                let Some(t) = &d.texture else {
-                    if let Some(v) = &d.up {
-                        self.error(
-                            v.span().start,
-                            "spot light: key `up` orients a `texture` and does nothing without one",
-                        );
-                    }
-                    return Some(Light::Spot {
-                        position,
-                        direction,
-                        intensity,
-                        cone_deg: cone,
-                        falloff_deg: falloff,
-                    });
-                };
-                let texture = self.beam_texture(t)?;
-                let frame = self.beam_frame(d, beam, at)?;
-                Some(Light::TexturedSpot {
-                    position,
-                    frame,
-                    intensity,
-                    cone_deg: cone,
-                    falloff_deg: falloff,
-                    texture,
-                })
-            }
+            "spot" => self.spot(d, at, position, intensity),
             other => {
                 self.error(d.kind.span().start, format!("unknown light type \"{other}\" (expected point, spot or sun; area lights are emissive materials, the environment is [environment])"));
                 None
             }
         }
+    }
+
+    /// A spot: `look_at` or `direction`, `cone_deg`, `falloff_deg`, and optionally a
+    /// `texture` oriented by `up`.
+    fn spot(&mut self, d: &LightDef, at: usize, position: Vec3, intensity: Rgb) -> Option<Light> {
+        let direction = match (&d.look_at, &d.direction) {
+            (Some(t), None) => self.vec3(t, "look_at") - position,
+            (None, Some(v)) => self.vec3(v, "direction"),
+            _ => {
+                self.error(
+                    at,
+                    "spot light needs exactly one of `look_at` or `direction`",
+                );
+                return None;
+            }
+        };
+        if direction.length() < 1e-9 {
+            self.error(at, "spot light direction is zero");
+            return None;
+        }
+        let cone = d
+            .cone_deg
+            .as_ref()
+            .map_or(20.0, |c| self.positive(c, "cone_deg"));
+        let falloff = d
+            .falloff_deg
+            .as_ref()
+            .map_or(cone * 0.75, |c| self.positive(c, "falloff_deg"));
+        if cone > 90.0 {
+            self.error(at, format!("spot cone_deg {cone} must be at most 90"));
+        }
+        if falloff > cone {
+            self.error(
+                at,
+                format!("spot falloff_deg {falloff} exceeds cone_deg {cone}"),
+            );
+        }
+        let beam = direction;
+        let direction = direction.normalize();
+        let Some(t) = &d.texture else {
+            if let Some(v) = &d.up {
+                self.error(
+                    v.span().start,
+                    "spot light: key `up` orients a `texture` and does nothing without one",
+                );
+            }
+            return Some(Light::Spot {
+                position,
+                direction,
+                intensity,
+                cone_deg: cone,
+                falloff_deg: falloff,
+            });
+        };
+        let texture = self.beam_texture(t)?;
+        let frame = self.beam_frame(d, beam, at)?;
+        Some(Light::TexturedSpot {
+            position,
+            frame,
+            intensity,
+            cone_deg: cone,
+            falloff_deg: falloff,
+            texture,
+        })
     }
 
     /// A spot's `texture`: any but vertex colours (a beam has no surface to read them on).
