@@ -63,7 +63,7 @@ fn scene_format_sky_example_loads_and_renders() {
         .unwrap();
     let example = fenced_toml(&doc)
         .into_iter()
-        .find(|t| t.contains("map = "))
+        .find(|t| t.contains("\nmap = "))
         .expect("the environment-map example");
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("skies")).unwrap();
@@ -276,4 +276,64 @@ fn job_format_doc_lists_the_real_defaults_and_its_example_renders() {
     // Header plus one row per frame and estimator.
     assert_eq!(csv.lines().count(), 1 + 2 * 3, "{csv}");
     assert!(out.join("frames/wcam/frame_000001.png").exists());
+}
+
+#[test]
+fn surface_detail_example_loads_and_renders() {
+    use eyeadapt_scene::{Bsdf, Light, Param};
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md"))
+        .unwrap();
+    let example = fenced_toml(&doc)
+        .into_iter()
+        .find(|t| t.contains("normal_map = "))
+        .expect("the surface-detail example");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("textures")).unwrap();
+    // Bricks: normals tilted along ±x in alternate columns, flat in the mortar rows.
+    let normals = image::RgbImage::from_fn(16, 16, |x, y| match (y % 4, x / 4 % 2) {
+        (0, _) => image::Rgb([128, 128, 255]),
+        (_, 0) => image::Rgb([90, 128, 245]),
+        _ => image::Rgb([166, 128, 245]),
+    });
+    normals
+        .save(dir.path().join("textures/bricks_normal.png"))
+        .unwrap();
+    // A slide: warm on the left, cool on the right, a white bar along the top.
+    let slide = image::RgbImage::from_fn(8, 8, |x, y| match (y, x < 4) {
+        (0, _) => image::Rgb([255, 255, 255]),
+        (_, true) => image::Rgb([255, 140, 40]),
+        _ => image::Rgb([40, 120, 255]),
+    });
+    slide.save(dir.path().join("textures/slide.png")).unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, &example).unwrap();
+    let s = eyeadapt_scene::load_scene(&scene)
+        .unwrap_or_else(|e| panic!("documented example fails:\n{e}"));
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    assert!(matches!(
+        s.materials[0].bsdf,
+        Bsdf::Conductor {
+            alpha: Param::Const(a),
+            alpha_v: Some(Param::Const(b)),
+            ..
+        } if a == 0.05 && b == 0.4
+    ));
+    assert!(matches!(&s.materials[1].bsdf, Bsdf::NormalMap { bsdf, .. }
+        if matches!(**bsdf, Bsdf::BumpMap { scale, .. } if scale == 0.01)));
+    assert!(matches!(
+        s.materials[2].bsdf,
+        Bsdf::Mask {
+            opacity: Param::Texture(_),
+            ..
+        }
+    ));
+    assert_eq!(s.emission_textures.len(), 1);
+    assert!(matches!(s.lights[0], Light::TexturedSpot { .. }));
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .args(["render", scene.to_str().unwrap(), "--spp", "4"])
+        .args(["--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

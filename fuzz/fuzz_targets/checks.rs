@@ -1,4 +1,4 @@
-//! What the fuzz targets check, one function per target. Shared with `tests/corpus.rs`, which
+//! What the fuzz targets check, one function per target. Shared with `tests/corpus/fuzz.rs`, which
 //! feeds every input kept in `tests/corpus/fuzz-regressions/TARGET/` to the same function in a
 //! normal `cargo test` (so it depends on nothing but the eyeadapt crates).
 #![allow(dead_code)]

@@ -14,6 +14,8 @@
 //! intensity = [50.0, 5.0, 5.0]
 //! cone_deg = 25.0                    # half-angle where the light reaches zero (Mitsuba `cutoff_angle`)
 //! falloff_deg = 18.0                 # half-angle of full intensity (Mitsuba `beam_width`); default 3/4 of cone_deg
+//! texture = "slide"                  # optional: the beam carries an image ([`Light::TexturedSpot`])
+//! up = [0.0, 0.0, 1.0]               # with a texture: where the image's bottom edge goes (default +y)
 //!
 //! [[lights]]
 //! type = "sun"                       # a directional light (Mitsuba `directional`)

@@ -20,6 +20,17 @@
 //! k = [3.9, 2.45, 2.14]
 //!
 //! [[materials]]
+//! name = "brushed_steel"
+//! type = "conductor"                # conductor and dielectric: anisotropic roughness,
+//! roughness_u = 0.05                # GGX alpha along ∂p/∂u (Mitsuba `alpha_u`)
+//! roughness_v = 0.4                 # and along ∂p/∂v (`alpha_v`), instead of `roughness`
+//! normal_map = "bricks"             # any type: a tangent-space normal map (a raw bitmap),
+//! bump_map = "dimples"              # a height field and its scale,
+//! bump_scale = 0.01
+//! opacity = 0.5                     # a cut-out (or opacity_texture),
+//! emission_texture = "slide"        # and emitted radiance from a texture
+//!
+//! [[materials]]
 //! name = "bench"
 //! type = "plastic"                  # GGX dielectric coating over a Lambertian base
 //! reflectance = [0.4, 0.3, 0.2]     # diffuse base

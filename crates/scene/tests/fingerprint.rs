@@ -10,9 +10,12 @@ use eyeadapt_scene::{Interpolation, Track};
 use glam::{Affine2, DMat4, DQuat, DVec3, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
 use std::sync::Arc;
+#[path = "fingerprint/surface.rs"]
+mod surface;
+use surface::{changes, full};
 
-/// A scene with every type and every variant in it.
-fn full() -> Scene {
+/// A scene with every type and every variant in it but those of `surface.rs`.
+fn base() -> Scene {
     let image = Arc::new(Image {
         width: 2,
         height: 1,
@@ -222,8 +225,8 @@ fn animation() -> SceneAnimation {
 
 type Change = fn(&mut Scene);
 
-/// One change of every field (and of every variant's fields), by name.
-fn changes() -> Vec<(&'static str, Change)> {
+/// One change of every field (and of every variant's fields), by name, but `surface.rs`'s.
+fn base_changes() -> Vec<(&'static str, Change)> {
     fn cam(s: &mut Scene) -> &mut Camera {
         s.camera.as_mut().unwrap()
     }

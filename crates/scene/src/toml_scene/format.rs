@@ -66,6 +66,18 @@ pub struct MaterialDef {
     pub reflectance_texture: Option<Spanned<String>>,
     pub roughness_texture: Option<Spanned<String>>,
     pub specular_reflectance_texture: Option<Spanned<String>>,
+    // Anisotropic roughness (`anisotropic.rs`): conductor and dielectric.
+    pub roughness_u: Option<Spanned<f32>>,
+    pub roughness_v: Option<Spanned<f32>>,
+    pub roughness_u_texture: Option<Spanned<String>>,
+    pub roughness_v_texture: Option<Spanned<String>>,
+    // Any type (`surface.rs`): normal and bump maps, opacity, textured emission.
+    pub normal_map: Option<Spanned<String>>,
+    pub bump_map: Option<Spanned<String>>,
+    pub bump_scale: Option<Spanned<f32>>,
+    pub opacity: Option<Spanned<f32>>,
+    pub opacity_texture: Option<Spanned<String>>,
+    pub emission_texture: Option<Spanned<String>>,
     // `principled` only (`principled.rs`); it also takes roughness(_texture) and ior.
     pub base_color: Option<V3>,
     pub base_color_texture: Option<Spanned<String>>,
@@ -152,6 +164,9 @@ pub struct LightDef {
     pub irradiance: Option<V3>,
     pub cone_deg: Option<Spanned<f32>>,
     pub falloff_deg: Option<Spanned<f32>>,
+    /// A spot's beam image (a texture name) and the up direction that orients it.
+    pub texture: Option<Spanned<String>>,
+    pub up: Option<V3>,
 }
 
 #[derive(Deserialize)]

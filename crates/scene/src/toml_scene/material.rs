@@ -1,7 +1,8 @@
 //! `[[materials]]`: BSDF type, its parameters and the emission.
 use super::Ctx;
+use super::anisotropic::Alphas;
 use super::format::MaterialDef;
-use crate::{Bsdf, Distribution, Material, Param, Rgb};
+use crate::{Bsdf, Distribution, Material, Param, Rgb, TextureId};
 
 /// The keys each material type takes.
 fn allowed_keys(kind: &str) -> Option<&'static [&'static str]> {
@@ -10,6 +11,10 @@ fn allowed_keys(kind: &str) -> Option<&'static [&'static str]> {
         "conductor" => &[
             "roughness",
             "roughness_texture",
+            "roughness_u",
+            "roughness_v",
+            "roughness_u_texture",
+            "roughness_v_texture",
             "eta",
             "k",
             "specular_reflectance",
@@ -22,7 +27,15 @@ fn allowed_keys(kind: &str) -> Option<&'static [&'static str]> {
             "roughness_texture",
             "ior",
         ],
-        "dielectric" => &["roughness", "roughness_texture", "ior"],
+        "dielectric" => &[
+            "roughness",
+            "roughness_texture",
+            "roughness_u",
+            "roughness_v",
+            "roughness_u_texture",
+            "roughness_v_texture",
+            "ior",
+        ],
         "thin_dielectric" => &["ior"],
         "principled" => super::principled::KEYS,
         _ => return None,
@@ -44,27 +57,12 @@ fn reflectance(cx: &mut Ctx<'_>, m: &MaterialDef) -> Rgb {
     c
 }
 
-/// `roughness` (default 0.1), in [0, 1].
-fn roughness(cx: &mut Ctx<'_>, m: &MaterialDef) -> f32 {
-    let Some(r) = &m.roughness else {
-        return 0.1;
-    };
-    let a = *r.get_ref();
-    if !(a.is_finite() && (0.0..=1.0).contains(&a)) {
-        cx.error(r.span().start, format!("roughness {a} must be in [0, 1]"));
-        return 0.1;
-    }
-    a
-}
-
 impl Ctx<'_> {
-    pub(super) fn material(&mut self, m: &MaterialDef) -> Material {
+    /// The material, and the texture that multiplies its emission (if any).
+    pub(super) fn material(&mut self, m: &MaterialDef) -> (Material, Option<TextureId>) {
         let name = m.name.get_ref().clone();
         let kind = m.kind.get_ref().as_str();
-        let emission = m
-            .emission
-            .as_ref()
-            .map_or(Rgb::ZERO, |e| self.colour(e, "emission"));
+        let (emission, emission_texture) = self.emission(m, &name);
         let Some(allowed) = allowed_keys(kind) else {
             self.error(
                 m.kind.span().start,
@@ -72,28 +70,31 @@ impl Ctx<'_> {
                     "unknown material type \"{kind}\" (expected diffuse, conductor, plastic, dielectric, thin_dielectric or principled)"
                 ),
             );
-            return Material::error();
+            return (Material::error(), None);
         };
         self.check_keys(m, &name, kind, allowed);
         let bsdf = match kind {
             "diffuse" => Bsdf::Diffuse {
                 reflectance: self.param(
                     &name,
+                    "reflectance_texture",
                     &m.reflectance_texture,
                     m.reflectance.is_some(),
                     |cx| reflectance(cx, m),
                 ),
             },
             "conductor" => self.conductor(m, &name),
-            "dielectric" | "thin_dielectric" => self.glass(m, kind, &name, |cx| roughness(cx, m)),
+            "dielectric" | "thin_dielectric" => self.glass(m, kind, &name),
             "principled" => self.principled(m, &name),
             _ => self.plastic(m, &name),
         };
-        Material {
+        let bsdf = self.surface(m, &name, bsdf);
+        let material = Material {
             name,
             bsdf,
             emission,
-        }
+        };
+        (material, emission_texture)
     }
 
     /// Every key given that `kind` does not take is an error at the key.
@@ -119,10 +120,10 @@ impl Ctx<'_> {
             ),
             ("ior", m.ior.as_ref().map(|v| v.span().start)),
         ];
-        let principled = super::principled::present(m);
-        let present = present
+        let typed = super::principled::present(m)
             .into_iter()
-            .chain(principled.into_iter().map(|(k, a)| (k, Some(a))));
+            .chain(super::anisotropic::present(m));
+        let present = present.into_iter().chain(typed.map(|(k, a)| (k, Some(a))));
         for (key, at) in present {
             if let Some(at) = at
                 && !allowed.contains(&key)
@@ -135,12 +136,10 @@ impl Ctx<'_> {
         }
     }
 
-    /// A conductor: GGX `roughness`, complex IOR `eta` + i`k` (default gold) and a
+    /// A conductor: GGX `roughness` (or `roughness_u`/`roughness_v`), complex IOR `eta` + i`k` (default gold) and a
     /// `specular_reflectance` tint.
     fn conductor(&mut self, m: &MaterialDef, name: &str) -> Bsdf {
-        let alpha = self.param(name, &m.roughness_texture, m.roughness.is_some(), |cx| {
-            roughness(cx, m)
-        });
+        let Alphas { alpha, alpha_v, .. } = self.alphas(m, name, 0.1);
         // Default: gold, Mitsuba's `Au` at the Rec.709 primaries.
         let eta = m
             .eta
@@ -151,6 +150,7 @@ impl Ctx<'_> {
                 .map_or(Rgb::new(3.983, 2.386, 1.603), |v| self.colour(v, "k"));
         let specular_reflectance = self.param(
             name,
+            "specular_reflectance_texture",
             &m.specular_reflectance_texture,
             m.specular_reflectance.is_some(),
             |cx| {
@@ -161,7 +161,7 @@ impl Ctx<'_> {
         );
         Bsdf::Conductor {
             alpha,
-            alpha_v: None,
+            alpha_v,
             distribution: Distribution::Ggx,
             eta,
             k,
@@ -181,13 +181,18 @@ impl Ctx<'_> {
         });
         let reflectance = self.param(
             name,
+            "reflectance_texture",
             &m.reflectance_texture,
             m.reflectance.is_some(),
             |cx| reflectance(cx, m),
         );
-        let alpha = self.param(name, &m.roughness_texture, m.roughness.is_some(), |cx| {
-            roughness(cx, m).max(0.01)
-        });
+        let alpha = self.param(
+            name,
+            "roughness_texture",
+            &m.roughness_texture,
+            m.roughness.is_some(),
+            |cx| cx.alpha_value(&m.roughness, "roughness", 0.1).max(0.01),
+        );
         Bsdf::Plastic {
             reflectance,
             alpha,
@@ -197,14 +202,9 @@ impl Ctx<'_> {
     }
 
     /// Glass: `ior` (interior over exterior, default 1.5, positive), and for `dielectric` a
-    /// `roughness` (GGX alpha; 0 or absent: smooth) or `roughness_texture`.
-    fn glass(
-        &mut self,
-        m: &MaterialDef,
-        kind: &str,
-        name: &str,
-        roughness: impl FnOnce(&mut Self) -> f32,
-    ) -> Bsdf {
+    /// `roughness` (GGX alpha; 0 or absent: smooth) or `roughness_texture`, or
+    /// `roughness_u`/`roughness_v`.
+    fn glass(&mut self, m: &MaterialDef, kind: &str, name: &str) -> Bsdf {
         let eta = m.ior.as_ref().map_or(1.5, |v| {
             let x = *v.get_ref();
             if !(x.is_finite() && x > 0.0) {
@@ -221,8 +221,12 @@ impl Ctx<'_> {
                 specular_transmittance: t,
             };
         }
-        let alpha = self.param(name, &m.roughness_texture, m.roughness.is_some(), roughness);
-        if alpha == Param::Const(0.0) || (m.roughness.is_none() && m.roughness_texture.is_none()) {
+        let Alphas {
+            alpha,
+            alpha_v,
+            given,
+        } = self.alphas(m, name, 0.1);
+        if !given || (alpha == Param::Const(0.0) && alpha_v.is_none()) {
             return Bsdf::Dielectric {
                 eta,
                 specular_reflectance: r,
@@ -238,7 +242,7 @@ impl Ctx<'_> {
         }
         Bsdf::RoughDielectric {
             alpha,
-            alpha_v: None,
+            alpha_v,
             distribution: Distribution::Ggx,
             eta,
             specular_reflectance: r,
@@ -246,11 +250,13 @@ impl Ctx<'_> {
         }
     }
 
-    /// A parameter given either as a constant (`constant` reads it) or by `texture` name; both
-    /// at once, or an unknown texture, is an error.
+    /// A parameter given either as a constant (`constant` reads it) or by texture name
+    /// (`texture`, the key `key`, e.g. `reflectance_texture`); both at once, or an unknown
+    /// texture, is an error.
     pub(super) fn param<T>(
         &mut self,
         material: &str,
+        key: &str,
         texture: &Option<toml::Spanned<String>>,
         constant_given: bool,
         constant: impl FnOnce(&mut Self) -> T,
@@ -261,22 +267,15 @@ impl Ctx<'_> {
         if constant_given {
             self.error(
                 t.span().start,
-                format!("material \"{material}\": give a constant or a texture, not both"),
+                format!(
+                    "material \"{material}\": give `{}` or `{key}`, not both",
+                    key.trim_end_matches("_texture")
+                ),
             );
         }
-        match self.textures.get(t.get_ref()) {
-            Some(Some(id)) => Param::Texture(*id),
-            Some(None) => Param::Const(constant(self)),
-            None => {
-                self.error(
-                    t.span().start,
-                    format!(
-                        "material \"{material}\": unknown texture \"{}\" (textures are defined in [[textures]])",
-                        t.get_ref()
-                    ),
-                );
-                Param::Const(constant(self))
-            }
+        match self.texture_ref(&format!("material \"{material}\""), key, t) {
+            Some(id) => Param::Texture(id),
+            None => Param::Const(constant(self)),
         }
     }
 }

@@ -2,12 +2,14 @@
 //! the file as serde sees it; stage two, here and in the sibling files, validates it into a
 //! [`Scene`], collecting every problem.
 
+mod anisotropic;
 mod environment;
 mod format;
 mod light;
 mod material;
 mod principled;
 mod shape;
+mod surface;
 mod texture;
 
 use crate::diagnostic::{Diagnostic, SceneError, Severity, SourceMap};
@@ -55,6 +57,7 @@ pub(crate) fn load_scene_str_with(
         diags: Vec::new(),
         dir: scene_dir(path),
         textures: HashMap::new(),
+        texture_kinds: Vec::new(),
         images,
         named_shapes: HashMap::new(),
     };
@@ -83,11 +86,34 @@ pub(crate) fn toml_error(map: &SourceMap, e: &toml::de::Error) -> Diagnostic {
     map.error(offset, message)
 }
 
+/// The kind of a loaded texture, as far as the keys that reference one care.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TextureKind {
+    /// A bitmap decoded from sRGB (not `raw`).
+    SrgbBitmap,
+    /// The mesh's vertex colours: defined on surfaces only, not by UV alone.
+    VertexColor,
+    /// Anything else (a raw bitmap, a checkerboard).
+    Other,
+}
+
+impl TextureKind {
+    fn of(t: &crate::Texture) -> TextureKind {
+        match t {
+            crate::Texture::Bitmap(b) if !b.raw => TextureKind::SrgbBitmap,
+            crate::Texture::MeshAttribute { .. } => TextureKind::VertexColor,
+            _ => TextureKind::Other,
+        }
+    }
+}
+
 struct Ctx<'a> {
     map: SourceMap<'a>,
     diags: Vec<Diagnostic>,
     dir: PathBuf,
     textures: HashMap<String, Option<TextureId>>,
+    /// What each texture of the scene's table is, by [`TextureId`] (what its users may check).
+    texture_kinds: Vec<TextureKind>,
     images: ImageCache,
     /// Shapes with a `name`: their meshes (in object space) and materials.
     named_shapes: HashMap<String, Vec<(MeshId, Option<MaterialId>)>>,
@@ -130,6 +156,32 @@ impl Ctx<'_> {
         c
     }
 
+    /// The texture `t` names, for `key` of `owner` (e.g. `material "m"`); `None` after an
+    /// error here (an unknown name) or at the texture's definition (it failed to load).
+    fn texture_ref(&mut self, owner: &str, key: &str, t: &Spanned<String>) -> Option<TextureId> {
+        match self.textures.get(t.get_ref()) {
+            Some(id) => *id,
+            None => {
+                self.error(
+                    t.span().start,
+                    format!(
+                        "{owner}: `{key}` names an unknown texture \"{}\" (textures are defined in [[textures]])",
+                        t.get_ref()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    /// The kind of a `[[textures]]` texture (the textures an MTL file adds later are `Other`).
+    fn texture_kind(&self, id: TextureId) -> TextureKind {
+        self.texture_kinds
+            .get(id.0 as usize)
+            .copied()
+            .unwrap_or(TextureKind::Other)
+    }
+
     fn positive(&mut self, v: &Spanned<f32>, what: &str) -> f32 {
         let x = *v.get_ref();
         if !(x.is_finite() && x > 0.0) {
@@ -162,7 +214,10 @@ impl Ctx<'_> {
             }
             // A texture that failed to load is remembered as None: its users are not told
             // again that it does not exist.
-            let id = self.texture(t).map(|tex| scene.add_texture(tex));
+            let id = self.texture(t).map(|tex| {
+                self.texture_kinds.push(TextureKind::of(&tex));
+                scene.add_texture(tex)
+            });
             self.textures.insert(name, id);
         }
         let mut names: HashMap<String, MaterialId> = HashMap::new();
@@ -175,8 +230,12 @@ impl Ctx<'_> {
                 );
                 continue;
             }
-            let mat = self.material(m.get_ref());
-            names.insert(name, scene.add_material(mat));
+            let (mat, emission_texture) = self.material(m.get_ref());
+            let id = scene.add_material(mat);
+            if let Some(t) = emission_texture {
+                scene.emission_textures.push((id, t));
+            }
+            names.insert(name, id);
         }
         for (i, s) in raw.shapes.iter().enumerate() {
             self.shape(i, s, &names, &mut scene);

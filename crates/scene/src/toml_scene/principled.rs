@@ -65,23 +65,33 @@ impl Ctx<'_> {
     }
 
     pub(super) fn principled(&mut self, m: &MaterialDef, name: &str) -> Bsdf {
-        let base_color = self.param(name, &m.base_color_texture, m.base_color.is_some(), |cx| {
-            let Some(v) = &m.base_color else {
-                return Rgb::splat(0.5);
-            };
-            let c = cx.colour(v, "base_color");
-            if c.max_element() > 1.0 {
-                cx.error(
-                    v.span().start,
-                    format!("base_color {c:?} exceeds 1: the surface would create energy"),
-                );
-            }
-            c
-        });
+        let base_color = self.param(
+            name,
+            "base_color_texture",
+            &m.base_color_texture,
+            m.base_color.is_some(),
+            |cx| {
+                let Some(v) = &m.base_color else {
+                    return Rgb::splat(0.5);
+                };
+                let c = cx.colour(v, "base_color");
+                if c.max_element() > 1.0 {
+                    cx.error(
+                        v.span().start,
+                        format!("base_color {c:?} exceeds 1: the surface would create energy"),
+                    );
+                }
+                c
+            },
+        );
         let mut p = Principled::new(base_color);
-        p.roughness = self.param(name, &m.roughness_texture, m.roughness.is_some(), |cx| {
-            cx.weight(&m.roughness, "roughness", 0.5)
-        });
+        p.roughness = self.param(
+            name,
+            "roughness_texture",
+            &m.roughness_texture,
+            m.roughness.is_some(),
+            |cx| cx.weight(&m.roughness, "roughness", 0.5),
+        );
         let w = |cx: &mut Self, v, key, d| Param::Const(cx.weight(v, key, d));
         p.metallic = w(self, &m.metallic, "metallic", 0.0);
         p.spec_tint = w(self, &m.spec_tint, "spec_tint", 0.0);
