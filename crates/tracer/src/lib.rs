@@ -29,6 +29,7 @@ mod material;
 mod microfacet;
 mod panes;
 mod path_state;
+mod plastic_table;
 mod pplastic;
 mod principled;
 mod principled_lobes;
