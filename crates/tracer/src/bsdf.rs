@@ -4,9 +4,8 @@
 //! `principled.rs` and `principled_thin.rs`.
 use crate::dielectric::{RoughDielectric, sample_smooth, sample_thin};
 use crate::integrator::Frame;
-#[cfg(doc)]
-use crate::microfacet::internal_diffuse_reflectance;
 use crate::microfacet::{Microfacet, fresnel_conductor, fresnel_dielectric};
+use crate::plastic_table::PlasticTable;
 use crate::pplastic::PPlastic;
 use crate::principled::Principled;
 use crate::principled_thin::PrincipledThin;
@@ -31,16 +30,16 @@ pub enum Bsdf {
         k: Vec3A,
         specular: Vec3A,
     },
-    /// Microfacet coating over Lambert, after Mitsuba's `roughplastic` (`nonlinear = false`):
-    /// the diffuse base is divided by (1 − Fdr) and attenuated by the smooth-interface Fresnel
-    /// transmittance on the way in and out (Mitsuba tabulates the rough-interface
-    /// transmittance instead; the difference is small for roughness below ~0.3).
+    /// Microfacet coating over Lambert, Mitsuba's `roughplastic` (`nonlinear = false`): the
+    /// diffuse base is divided by (1 − Fdr) and attenuated by the rough interface's
+    /// transmittance T on the way in and out, both from the coating's [`PlasticTable`].
     Plastic {
         diffuse: Vec3A,
         ggx: Microfacet,
         eta: f32,
         inv_eta2: f32,
         spec_weight: f32,
+        table: &'static PlasticTable,
     },
     /// Smooth glass; `eta` relative to the viewer's side (see `dielectric.rs`).
     Dielectric {
@@ -179,22 +178,24 @@ impl Bsdf {
         }
     }
 
-    /// The plastic over base `reflectance`; `fdr` is the internal diffuse reflectance of the
-    /// coating's `ior` ([`internal_diffuse_reflectance`], computed once per material).
+    /// The plastic over base `reflectance`; `table` holds the coating's transmittance and
+    /// internal reflectance ([`PlasticTable::get`], computed once per material). `d_mean` is
+    /// the base's mean reflectance over the surface, which steers lobe sampling.
     pub fn plastic(
         reflectance: Vec3A,
         alpha: f32,
         distribution: Distribution,
         ior: f32,
-        fdr: f32,
+        table: &'static PlasticTable,
+        d_mean: f32,
     ) -> Bsdf {
-        let d_mean = (reflectance.x + reflectance.y + reflectance.z) / 3.0;
         Bsdf::Plastic {
-            diffuse: reflectance / (1.0 - fdr),
+            diffuse: reflectance / (1.0 - table.fdr),
             ggx: Microfacet::new(alpha, distribution),
             eta: ior,
             inv_eta2: 1.0 / (ior * ior),
             spec_weight: 1.0 / (1.0 + d_mean),
+            table,
         }
     }
 
@@ -300,20 +301,21 @@ impl Bsdf {
                 ggx,
                 eta,
                 inv_eta2,
+                table,
                 ..
             } => {
                 let m = (wo + wi).normalize();
                 let spec = fresnel_dielectric(wi.dot(m), eta) * ggx.d(m) * ggx.g(wi, wo, m)
                     / (4.0 * wi.z * wo.z);
-                let ti = 1.0 - fresnel_dielectric(wi.z, eta);
-                let to = 1.0 - fresnel_dielectric(wo.z, eta);
+                let ti = table.transmittance(wi.z);
+                let to = table.transmittance(wo.z);
                 Vec3A::splat(spec) + diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
             }
         }
     }
 
-    fn plastic_spec_prob(wo: Vec3A, eta: f32, spec_weight: f32) -> f32 {
-        let t = 1.0 - fresnel_dielectric(wo.z, eta);
+    fn plastic_spec_prob(wo: Vec3A, table: &PlasticTable, spec_weight: f32) -> f32 {
+        let t = table.transmittance(wo.z);
         let ps = (1.0 - t) * spec_weight;
         let pd = t * (1.0 - spec_weight);
         ps / (ps + pd)
@@ -347,11 +349,11 @@ impl Bsdf {
             }
             Bsdf::Plastic {
                 ggx,
-                eta,
+                table,
                 spec_weight,
                 ..
             } => {
-                let ps = Self::plastic_spec_prob(wo, eta, spec_weight);
+                let ps = Self::plastic_spec_prob(wo, table, spec_weight);
                 let m = (wo + wi).normalize();
                 let spec = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
                 ps * spec + (1.0 - ps) * wi.z * FRAC_1_PI
@@ -393,11 +395,11 @@ impl Bsdf {
             Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample(wo, u)),
             Bsdf::Plastic {
                 ggx,
-                eta,
+                table,
                 spec_weight,
                 ..
             } => {
-                if u_lobe < Self::plastic_spec_prob(wo, eta, spec_weight) {
+                if u_lobe < Self::plastic_spec_prob(wo, table, spec_weight) {
                     reflect(wo, ggx.sample(wo, u))
                 } else {
                     cosine_hemisphere(u)

@@ -4,7 +4,7 @@
 //! anisotropic roughness and `pplastic` among them.
 use super::*;
 use crate::dielectric::RoughDielectric;
-use crate::microfacet::internal_diffuse_reflectance;
+use crate::plastic_table::PlasticTable;
 use crate::pplastic::PPlastic;
 use crate::sampler::{SampleStream, hash_key};
 
@@ -40,7 +40,8 @@ fn smooth_lobed() -> Vec<Bsdf> {
             0.2,
             d,
             1.5,
-            internal_diffuse_reflectance(1.5),
+            PlasticTable::get(0.2, d, 1.5),
+            0.3,
         ));
         v.push(rough_glass(0.3, d, 1.5));
         v.push(rough_glass(0.3, d, 1.0 / 1.5));

@@ -28,6 +28,7 @@ mod lights;
 mod material;
 mod microfacet;
 mod path_state;
+mod plastic_table;
 mod pplastic;
 mod principled;
 mod principled_lobes;

@@ -14,7 +14,8 @@ use crate::bsdf::Bsdf;
 use crate::bump::{Terminator, bumped_normal, height_gradient};
 use crate::dielectric::RoughDielectric;
 use crate::interaction::SurfaceInteraction;
-use crate::microfacet::{Microfacet, internal_diffuse_reflectance};
+use crate::microfacet::Microfacet;
+use crate::plastic_table::PlasticTable;
 use crate::pplastic::PPlastic;
 use crate::principled::Principled;
 use crate::principled_thin::PrincipledThin;
@@ -29,8 +30,9 @@ struct Entry {
     /// The innermost BSDF (no wrapper left); unused for a blend.
     bsdf: SceneBsdf,
     emission: Vec3A,
-    /// Internal diffuse reflectance of a plastic's coating (0 for other BSDFs).
-    fdr: f32,
+    /// A plastic's coating terms (at its roughness, or its mean roughness if textured) and
+    /// the mean of its base reflectance; `None` for other BSDFs.
+    plastic: Option<(&'static PlasticTable, f32)>,
     /// A `pplastic`'s probability of sampling its specular lobe.
     spec_prob: f32,
     /// Black seen from the back of the geometric normal.
@@ -102,7 +104,7 @@ impl Entry {
         let root = Entry {
             bsdf: SceneBsdf::Null,
             emission: m.emission.into(),
-            fdr: 0.0,
+            plastic: None,
             spec_prob: 0.0,
             one_sided: false,
             opacity: Vec::new(),
@@ -162,9 +164,23 @@ impl Entry {
                 _ => break,
             }
         }
-        self.fdr = match bsdf {
-            SceneBsdf::Plastic { ior, .. } => internal_diffuse_reflectance(*ior),
-            _ => 0.0,
+        self.plastic = match bsdf {
+            SceneBsdf::Plastic {
+                reflectance,
+                alpha,
+                distribution,
+                ior,
+            } => {
+                let a = match *alpha {
+                    Param::Const(a) => a,
+                    Param::Texture(t) => texture::param_mean(Param::Texture(t), textures),
+                };
+                Some((
+                    PlasticTable::get(a.max(0.01), *distribution, *ior),
+                    texture::param_mean(*reflectance, textures),
+                ))
+            }
+            _ => None,
         };
         if let SceneBsdf::PPlastic {
             diffuse_reflectance,
@@ -479,7 +495,12 @@ impl Materials {
                 self.number(alpha, si).max(0.01),
                 distribution,
                 ior,
-                e.fdr,
+                e.plastic
+                    .expect("a plastic's table is built with its entry")
+                    .0,
+                e.plastic
+                    .expect("a plastic's table is built with its entry")
+                    .1,
             ),
             SceneBsdf::Dielectric {
                 eta,

@@ -227,6 +227,7 @@ pub fn fresnel_refract(cos_i: f32, eta: f32) -> (f32, f32) {
 /// Hemispherical average of the dielectric Fresnel reflectance seen from inside a medium of
 /// relative IOR `eta` (Fdr for 1/eta), by numerical integration: it is computed once per
 /// material, so accuracy beats a polynomial fit.
+#[cfg(test)]
 pub fn internal_diffuse_reflectance(eta: f32) -> f32 {
     // Light inside (IOR eta) hitting the interface towards IOR 1: relative IOR 1/eta.
     let inv = 1.0 / eta;
