@@ -10,9 +10,10 @@ pub struct CaseInfo {
     pub title: &'static str,
     /// The paper's figures.
     pub figures: &'static str,
-    /// Jobs, rendered in this order: (name, job text, scene template). Without a template the
-    /// job names its scene itself (`configs/<name>.toml`); with one (`paper/scenes/`) the job
-    /// reads `scene.toml`, the template filled with a configuration of the sensitivity study.
+    /// Jobs, rendered in this order: (name, job text, scene template), all of `paper/scenes/`;
+    /// each job is a template filled with a configuration of the sensitivity study. Without a
+    /// scene template the job names a built-in scene (its baseline is `configs/<name>.toml`);
+    /// with one it reads `scene.toml`, the template filled likewise.
     pub jobs: &'static [Job],
     /// Quick variant, and the full variant's sensitivity runs: (width, height, spp) per job.
     pub quick: &'static [(u32, u32, u32)],
@@ -37,7 +38,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 5",
         jobs: &[(
             "cornell-orange",
-            include_str!("../../../configs/cornell-orange.toml"),
+            include_str!("../../../paper/scenes/case1.job.toml"),
             None,
         )],
         quick: &[(64, 64, 16)],
@@ -54,12 +55,12 @@ pub const CASES: &[CaseInfo] = &[
         jobs: &[
             (
                 "white-world-orange-light",
-                include_str!("../../../configs/white-world-orange-light.toml"),
+                include_str!("../../../paper/scenes/case2-white-world-orange-light.job.toml"),
                 None,
             ),
             (
                 "orange-world-white-light",
-                include_str!("../../../configs/orange-world-white-light.toml"),
+                include_str!("../../../paper/scenes/case2-orange-world-white-light.job.toml"),
                 None,
             ),
         ],
@@ -112,7 +113,7 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 10-12",
         jobs: &[(
             "two-rooms",
-            include_str!("../../../configs/two-rooms.toml"),
+            include_str!("../../../paper/scenes/case5.job.toml"),
             None,
         )],
         quick: &[(96, 72, 16)],

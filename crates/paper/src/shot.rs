@@ -1,9 +1,9 @@
 //! A case's jobs rendered through the frame pipeline, frame by frame, with their estimates
 //! and the case's diagnostics.
 use crate::case_info::CaseInfo;
-use crate::study::{Config, WCAM_WEIGHT};
+use crate::study::{Config, WCAM_SPECULAR, WCAM_WEIGHT};
 use crate::{cases, sheet};
-use eyeadapt_color::{Estimate, WcamWeight};
+use eyeadapt_color::{Estimate, WcamSpecular, WcamWeight};
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::output::atomic_write_bytes;
@@ -107,6 +107,9 @@ fn load_case_job(
     let mut job = load_job(Some(&path), &ov)?;
     if spec.config.get(WCAM_WEIGHT) == Some("power") {
         job.estimator_config.wcam.weight = WcamWeight::Power;
+    }
+    if spec.config.get(WCAM_SPECULAR) == Some("diffuse_only") {
+        job.estimator_config.wcam.specular = WcamSpecular::DiffuseOnly;
     }
     Ok(job)
 }

@@ -129,7 +129,11 @@ fn setup_line(run: &JobRun) -> String {
     let j = &run.job;
     let source = j.scene.source.display().to_string();
     let files = match source.strip_prefix("builtin:") {
-        Some(b) => format!("`configs/{}.toml` over `builtin:{b}`", run.name),
+        // The job is a template of paper/scenes/ whose baseline is the configs/ job.
+        Some(b) => format!(
+            "`configs/{}.toml` (its camera a parameter of the study) over `builtin:{b}`",
+            run.name
+        ),
         // A template of paper/scenes/, filled (the work directory holds the filled files).
         None => "the job and scene templates of `paper/scenes/`, baseline configuration".into(),
     };
