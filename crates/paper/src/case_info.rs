@@ -15,6 +15,8 @@ pub struct CaseInfo {
     /// scene template the job names a built-in scene (its baseline is `configs/<name>.toml`);
     /// with one it reads `scene.toml`, the template filled likewise.
     pub jobs: &'static [Job],
+    /// Files the scene template reads, written beside it (path relative to it, contents).
+    pub files: &'static [(&'static str, &'static [u8])],
     /// Quick variant, and the full variant's sensitivity runs: (width, height, spp) per job.
     pub quick: &'static [(u32, u32, u32)],
     pub study: &'static [(u32, u32, u32)],
@@ -41,6 +43,7 @@ pub const CASES: &[CaseInfo] = &[
             include_str!("../../../paper/scenes/case1.job.toml"),
             None,
         )],
+        files: &[],
         quick: &[(64, 64, 16)],
         study: &[(64, 64, 16)],
         full: None,
@@ -64,6 +67,7 @@ pub const CASES: &[CaseInfo] = &[
                 None,
             ),
         ],
+        files: &[],
         quick: &[(64, 48, 16), (64, 48, 16)],
         study: &[(64, 48, 16), (64, 48, 16)],
         full: None,
@@ -82,6 +86,7 @@ pub const CASES: &[CaseInfo] = &[
                 "../../../paper/scenes/case3-cornell-green-floor.toml"
             )),
         )],
+        files: &[],
         quick: &[(128, 128, 8)],
         study: &[(128, 128, 8)],
         full: None,
@@ -100,6 +105,10 @@ pub const CASES: &[CaseInfo] = &[
                 "../../../paper/scenes/case4-statue-red-spot.toml"
             )),
         )],
+        files: &[(
+            "meshes/guardian-lion.obj",
+            include_bytes!("../../../paper/scenes/meshes/guardian-lion.obj"),
+        )],
         quick: &[(96, 72, 16)],
         study: &[(96, 72, 16)],
         full: None,
@@ -116,6 +125,7 @@ pub const CASES: &[CaseInfo] = &[
             include_str!("../../../paper/scenes/case5.job.toml"),
             None,
         )],
+        files: &[],
         quick: &[(96, 72, 16)],
         study: &[(96, 72, 16)],
         full: None,
@@ -132,6 +142,7 @@ pub const CASES: &[CaseInfo] = &[
             include_str!("../../../paper/scenes/case6.job.toml"),
             Some(include_str!("../../../paper/scenes/case6-three-rooms.toml")),
         )],
+        files: &[],
         quick: &[(64, 36, 2)],
         // 121 frames: the full variant's main run at half the job's size, its 24 study runs
         // smaller still, so that `eyeadapt paper` finishes in well under an hour on 2 busy cores.

@@ -154,7 +154,6 @@ fn case4(quick: bool) -> Vec<Param> {
                         &[
                             ("spot_cone_deg", format!("{c:?}")),
                             ("spot_falloff_deg", format!("{:?}", 0.75 * c)),
-                            ("spot_look_at", v3(0.0, 0.86, -1.02)),
                         ],
                     )
                 })
@@ -339,8 +338,9 @@ mod tests {
                 let scene = match template {
                     Some(t) => {
                         let text = crate::shot::fill_template(t, &configs[0], name).unwrap();
-                        eyeadapt_scene::load_scene_str(&text, std::path::Path::new("s.toml"))
-                            .unwrap()
+                        let beside =
+                            concat!(env!("CARGO_MANIFEST_DIR"), "/../../paper/scenes/s.toml");
+                        eyeadapt_scene::load_scene_str(&text, std::path::Path::new(beside)).unwrap()
                     }
                     None => {
                         let b = job.split("builtin:").nth(1).unwrap();

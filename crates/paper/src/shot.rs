@@ -91,6 +91,14 @@ fn load_case_job(
     if let Some(t) = template {
         let scene = fill_template(t, spec.config, &format!("{name} scene"))?;
         atomic_write_bytes(&dir.join("scene.toml"), scene.as_bytes())?;
+        for (path, bytes) in case.files {
+            let p = dir.join(path);
+            if let Some(parent) = p.parent() {
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| Failure::Other(format!("{}: {e}", parent.display())))?;
+            }
+            atomic_write_bytes(&p, bytes)?;
+        }
     }
     let path = dir.join(format!("{name}.toml"));
     atomic_write_bytes(&path, text.as_bytes())?;

@@ -195,7 +195,11 @@ mod tests {
                         assert!(job.contains("scene ="), "{name}");
                         if let Some(t) = scene {
                             let text = crate::shot::fill_template(t, c, name).unwrap();
-                            let path = std::path::Path::new("scene.toml");
+                            // Beside the templates, where the files they read are.
+                            let path = std::path::Path::new(concat!(
+                                env!("CARGO_MANIFEST_DIR"),
+                                "/../../paper/scenes/scene.toml"
+                            ));
                             if let Err(e) = eyeadapt_scene::load_scene_str(&text, path) {
                                 panic!("case {} {:?}: {e:?}", case.number, c.labels);
                             }
