@@ -67,22 +67,26 @@ fn case1(quick: bool) -> Vec<Param> {
 /// Case 2: the camera's place in the room (x ∈ [−2, 2], z ∈ [−2.5, 2.5]), 1.5 m high, always
 /// looking at the back wall's read-out (the box and the sphere stay below it).
 fn case2(quick: bool) -> Vec<Param> {
-    let places: &[(&str, [f64; 3])] = if quick {
-        &[("near the front wall", [0.3, 1.5, 2.1])]
+    // Near the front wall (the baseline), the front left corner, mid-room, mid-room right.
+    let places: &[[f64; 3]] = if quick {
+        &[[0.3, 1.5, 2.1]]
     } else {
         &[
-            ("near the front wall", [0.3, 1.5, 2.1]),
-            ("front left corner", [-1.5, 1.5, 2.1]),
-            ("mid-room", [0.3, 1.5, 0.3]),
-            ("mid-room right", [1.5, 1.5, 0.3]),
+            [0.3, 1.5, 2.1],
+            [-1.5, 1.5, 2.1],
+            [0.3, 1.5, 0.3],
+            [1.5, 1.5, 0.3],
         ]
     };
     vec![
         param(
-            "camera",
+            "camera (x, z)",
             places
                 .iter()
-                .map(|(l, p)| level(*l, &[("camera_position", v3(p[0], p[1], p[2]))]))
+                .map(|p| {
+                    let label = format!("({}, {}) m", p[0], p[2]);
+                    level(label, &[("camera_position", v3(p[0], p[1], p[2]))])
+                })
                 .collect(),
         ),
         wcam_weight(quick),
@@ -212,7 +216,7 @@ fn case5_place(label: String, p: [f64; 3]) -> Level {
 /// view 3's frustum still fits the doorway.
 fn case5(quick: bool) -> Vec<Param> {
     let baseline = level(
-        "4 m from the doorway, on its axis",
+        "4, 0 m",
         &[
             ("camera_position", v3(1.0, 1.5, -2.0)),
             ("look_at_1", "[3.0, 1.5, 1.464102]".into()),
@@ -224,11 +228,14 @@ fn case5(quick: bool) -> Vec<Param> {
     let mut places = vec![baseline];
     if !quick {
         for (d, off) in [(4.0, 0.3), (2.5, 0.0), (2.5, 0.3)] {
-            let label = format!("{d} m from the doorway, {off} m off its axis");
+            let label = format!("{d}, {off} m");
             places.push(case5_place(label, [DOOR_X - d, 1.5, DOOR_Z + off]));
         }
     }
-    vec![param("camera", places), wcam_weight(quick)]
+    vec![
+        param("camera (from the doorway, off its axis)", places),
+        wcam_weight(quick),
+    ]
 }
 
 /// Case 6's bench: GGX roughness of its coating (the built-in scene's 0.03 first).

@@ -75,13 +75,11 @@ pub(super) fn power_share(data: &SceneData, spot: &Spot, material: u32) -> f64 {
             let d = (spot.axis * c + (a * phi.cos() + b * phi.sin()) * s).normalize();
             let (o, d) = (Vec3A::from(spot.position), Vec3A::from(d));
             all += w;
-            if let Some(h) = data
+            let hit = data
                 .geometry
-                .intersect_with(&mut scratch, o, d, f32::INFINITY)
-            {
-                if data.geometry.interaction(o, d, &h).material == material {
-                    on += w;
-                }
+                .intersect_with(&mut scratch, o, d, f32::INFINITY);
+            if hit.is_some_and(|h| data.geometry.interaction(o, d, &h).material == material) {
+                on += w;
             }
         }
     }
