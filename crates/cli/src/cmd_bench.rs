@@ -35,6 +35,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
             seed: run as u64,
             frame: 0,
             filter: eyeadapt_scene::PixelFilter::Box,
+            wcam_specular: Default::default(),
         };
         let f = render(&data, &view, &s);
         samples = f.stats.samples;

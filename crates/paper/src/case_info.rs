@@ -10,10 +10,13 @@ pub struct CaseInfo {
     pub title: &'static str,
     /// The paper's figures.
     pub figures: &'static str,
-    /// Jobs, rendered in this order: (name, job text, scene template). Without a template the
-    /// job names its scene itself (`configs/<name>.toml`); with one (`paper/scenes/`) the job
-    /// reads `scene.toml`, the template filled with a configuration of the sensitivity study.
+    /// Jobs, rendered in this order: (name, job text, scene template), all of `paper/scenes/`;
+    /// each job is a template filled with a configuration of the sensitivity study. Without a
+    /// scene template the job names a built-in scene (its baseline is `configs/<name>.toml`);
+    /// with one it reads `scene.toml`, the template filled likewise.
     pub jobs: &'static [Job],
+    /// Files the scene template reads, written beside it (path relative to it, contents).
+    pub files: &'static [(&'static str, &'static [u8])],
     /// Quick variant, and the full variant's sensitivity runs: (width, height, spp) per job.
     pub quick: &'static [(u32, u32, u32)],
     pub study: &'static [(u32, u32, u32)],
@@ -37,9 +40,10 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 5",
         jobs: &[(
             "cornell-orange",
-            include_str!("../../../configs/cornell-orange.toml"),
+            include_str!("../../../paper/scenes/case1.job.toml"),
             None,
         )],
+        files: &[],
         quick: &[(64, 64, 16)],
         study: &[(64, 64, 16)],
         full: None,
@@ -54,15 +58,16 @@ pub const CASES: &[CaseInfo] = &[
         jobs: &[
             (
                 "white-world-orange-light",
-                include_str!("../../../configs/white-world-orange-light.toml"),
+                include_str!("../../../paper/scenes/case2-white-world-orange-light.job.toml"),
                 None,
             ),
             (
                 "orange-world-white-light",
-                include_str!("../../../configs/orange-world-white-light.toml"),
+                include_str!("../../../paper/scenes/case2-orange-world-white-light.job.toml"),
                 None,
             ),
         ],
+        files: &[],
         quick: &[(64, 48, 16), (64, 48, 16)],
         study: &[(64, 48, 16), (64, 48, 16)],
         full: None,
@@ -81,6 +86,7 @@ pub const CASES: &[CaseInfo] = &[
                 "../../../paper/scenes/case3-cornell-green-floor.toml"
             )),
         )],
+        files: &[],
         quick: &[(128, 128, 8)],
         study: &[(128, 128, 8)],
         full: None,
@@ -99,6 +105,10 @@ pub const CASES: &[CaseInfo] = &[
                 "../../../paper/scenes/case4-statue-red-spot.toml"
             )),
         )],
+        files: &[(
+            "meshes/guardian-lion.obj",
+            include_bytes!("../../../paper/scenes/meshes/guardian-lion.obj"),
+        )],
         quick: &[(96, 72, 16)],
         study: &[(96, 72, 16)],
         full: None,
@@ -112,9 +122,10 @@ pub const CASES: &[CaseInfo] = &[
         figures: "Fig. 10-12",
         jobs: &[(
             "two-rooms",
-            include_str!("../../../configs/two-rooms.toml"),
+            include_str!("../../../paper/scenes/case5.job.toml"),
             None,
         )],
+        files: &[],
         quick: &[(96, 72, 16)],
         study: &[(96, 72, 16)],
         full: None,
@@ -131,6 +142,7 @@ pub const CASES: &[CaseInfo] = &[
             include_str!("../../../paper/scenes/case6.job.toml"),
             Some(include_str!("../../../paper/scenes/case6-three-rooms.toml")),
         )],
+        files: &[],
         quick: &[(64, 36, 2)],
         // 121 frames: the full variant's main run at half the job's size, its 24 study runs
         // smaller still, so that `eyeadapt paper` finishes in well under an hour on 2 busy cores.

@@ -19,6 +19,8 @@
 mod case_info;
 /// What each case measures and judges, one file per case.
 mod cases;
+/// Each case's sensitivity grid.
+mod grids;
 /// Image regions and their mean colours.
 mod measure;
 /// What to run and where to write.
@@ -41,11 +43,12 @@ mod study;
 mod verdict;
 
 pub use crate::case_info::{CASES, CaseInfo};
+pub use crate::grids::case_grid;
 pub use crate::measure::{Region, RegionMean, equal_luminance_hsv, region_mean};
 pub use crate::options::{PaperOptions, variant_description};
 pub use crate::outcome::{CaseReport, PaperRun};
 pub use crate::report::results_markdown;
 pub use crate::run::{run, run_case};
 pub(crate) use crate::shot::{JobRun, Named, Shot};
-pub use crate::study::{Config, Level, Param, Study, case_grid};
+pub use crate::study::{Config, Level, Param, Study};
 pub use crate::verdict::{Check, CheckStat, ClaimRun, Outcome, Verdict, decide};

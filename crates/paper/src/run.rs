@@ -42,7 +42,7 @@ pub fn run_case(number: u32, o: &PaperOptions) -> Result<CaseReport, Failure> {
     let dir = o.work_dir().join(case.slug);
     eyeadapt_sequencer::still::prepare_out_dir(&dir)?;
     eyeadapt_sequencer::still::prepare_out_dir(&o.out)?;
-    let (params, configs) = study::case_grid(number, o.quick);
+    let (params, configs) = crate::grids::case_grid(number, o.quick);
     let seeds = study::seeds(o.quick, o.seed);
     let eye = o.eye_samples.or(o.quick.then_some(case.quick_eye));
     let main_spec = RunSpec {

@@ -1,9 +1,9 @@
 //! A case's jobs rendered through the frame pipeline, frame by frame, with their estimates
 //! and the case's diagnostics.
 use crate::case_info::CaseInfo;
-use crate::study::{Config, WCAM_WEIGHT};
+use crate::study::{Config, WCAM_SPECULAR, WCAM_WEIGHT};
 use crate::{cases, sheet};
-use eyeadapt_color::{Estimate, WcamWeight};
+use eyeadapt_color::{Estimate, WcamSpecular, WcamWeight};
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::job::{Job, JobOverrides, load_job};
 use eyeadapt_sequencer::output::atomic_write_bytes;
@@ -91,6 +91,14 @@ fn load_case_job(
     if let Some(t) = template {
         let scene = fill_template(t, spec.config, &format!("{name} scene"))?;
         atomic_write_bytes(&dir.join("scene.toml"), scene.as_bytes())?;
+        for (path, bytes) in case.files {
+            let p = dir.join(path);
+            if let Some(parent) = p.parent() {
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| Failure::Other(format!("{}: {e}", parent.display())))?;
+            }
+            atomic_write_bytes(&p, bytes)?;
+        }
     }
     let path = dir.join(format!("{name}.toml"));
     atomic_write_bytes(&path, text.as_bytes())?;
@@ -107,6 +115,9 @@ fn load_case_job(
     let mut job = load_job(Some(&path), &ov)?;
     if spec.config.get(WCAM_WEIGHT) == Some("power") {
         job.estimator_config.wcam.weight = WcamWeight::Power;
+    }
+    if spec.config.get(WCAM_SPECULAR) == Some("diffuse_only") {
+        job.estimator_config.wcam.specular = WcamSpecular::DiffuseOnly;
     }
     Ok(job)
 }

@@ -8,19 +8,21 @@
 //! 80 % of the configurations.
 use crate::verdict::{Outcome, Verdict};
 
-/// Template placeholder that is not a template value: the WCAM weight reading (estimators.md
-/// §2.2 (d)), applied to the job's estimator options.
+/// Template placeholders that are not template values but estimator options of the job: the
+/// WCAM weight reading (estimators.md §2.2 (d)) and WCAM's specular mode (§2.3).
 pub const WCAM_WEIGHT: &str = "wcam_weight";
+pub const WCAM_SPECULAR: &str = "wcam_specular";
 
 /// One value of a parameter: its label and what it sets.
 #[derive(Clone, Debug)]
 pub struct Level {
     pub label: String,
-    /// (placeholder, value) pairs for the scene and job templates, or [`WCAM_WEIGHT`].
+    /// (placeholder, value) pairs for the scene and job templates, or [`WCAM_WEIGHT`] and
+    /// [`WCAM_SPECULAR`].
     pub fill: Vec<(&'static str, String)>,
 }
 
-fn level(label: impl Into<String>, fill: &[(&'static str, String)]) -> Level {
+pub(crate) fn level(label: impl Into<String>, fill: &[(&'static str, String)]) -> Level {
     Level {
         label: label.into(),
         fill: fill.to_vec(),
@@ -93,145 +95,6 @@ pub fn grid(params: &[Param], keep: fn(&Config) -> bool) -> Vec<Config> {
     }
     out.retain(keep);
     out
-}
-
-fn wcam_weight(quick: bool) -> Param {
-    let mut levels = vec![level("linear", &[(WCAM_WEIGHT, "linear".into())])];
-    if !quick {
-        levels.push(level("power", &[(WCAM_WEIGHT, "power".into())]));
-    }
-    Param {
-        name: "WCAM weight",
-        levels,
-    }
-}
-
-fn v3(x: f64, y: f64, z: f64) -> String {
-    format!("[{x:?}, {y:?}, {z:?}]")
-}
-
-/// The closing wall of case 3's box: 0.73 grey at z = 0, facing into the box.
-const FRONT_WALL: &str = "# The front wall that closes the box (sensitivity study).\n[[shapes]]\ntype = \"quad\"\nmaterial = \"white\"\ncorner = [0.0, 0.0, 0.0]\nu = [0.556, 0.0, 0.0]\nv = [0.0, 0.549, 0.0]\n";
-
-/// Case 3's camera distances (z of the eye; the box's open face is z = 0).
-const CASE3_Z: [f64; 3] = [-0.8, -0.4, 0.02];
-const CASE3_Y: [f64; 3] = [0.273, 0.18, 0.36];
-
-fn case3(quick: bool) -> Vec<Param> {
-    let zs: &[f64] = if quick { &[-0.8, 0.02] } else { &CASE3_Z };
-    let ys: &[f64] = if quick { &[0.273] } else { &CASE3_Y };
-    let z_levels = zs
-        .iter()
-        .map(|&z| level(format!("{z} m"), &[("camera_z", format!("{z:?}"))]))
-        .collect();
-    let y_levels = ys
-        .iter()
-        .map(|&y| level(format!("{y} m"), &[("camera_y", format!("{y:?}"))]))
-        .collect();
-    vec![
-        Param {
-            name: "camera z",
-            levels: z_levels,
-        },
-        Param {
-            name: "camera height",
-            levels: y_levels,
-        },
-        Param {
-            name: "box",
-            levels: vec![
-                level("open", &[("front_wall", String::new())]),
-                level("closed", &[("front_wall", FRONT_WALL.into())]),
-            ],
-        },
-        wcam_weight(quick),
-    ]
-}
-
-/// A closed box needs the camera inside it.
-fn case3_keep(c: &Config) -> bool {
-    let inside = c
-        .get("camera_z")
-        .and_then(|z| z.parse::<f64>().ok())
-        .is_some_and(|z| z > 0.0);
-    c.get("front_wall").is_none_or(str::is_empty) || inside
-}
-
-/// Case 4's spot: half-angle of the cone (its full-intensity core is ¾ of it) and intensity
-/// as a multiple of the built-in scene's (10, 0.4, 0.4) W/sr.
-fn case4(quick: bool) -> Vec<Param> {
-    let cones: &[f64] = if quick {
-        &[4.0, 18.0]
-    } else {
-        &[4.0, 8.0, 12.0, 18.0]
-    };
-    let scales: &[f64] = if quick {
-        &[1.0, 4.0]
-    } else {
-        &[1.0, 4.0, 16.0]
-    };
-    vec![
-        Param {
-            name: "spot cone",
-            levels: cones
-                .iter()
-                .map(|&c| {
-                    level(
-                        format!("{c}°"),
-                        &[
-                            ("spot_cone_deg", format!("{c:?}")),
-                            ("spot_falloff_deg", format!("{:?}", 0.75 * c)),
-                            ("spot_look_at", v3(0.0, 0.86, -1.02)),
-                        ],
-                    )
-                })
-                .collect(),
-        },
-        Param {
-            name: "spot intensity",
-            levels: scales
-                .iter()
-                .map(|&k| {
-                    level(
-                        format!("{k}×"),
-                        &[("spot_intensity", v3(10.0 * k, 0.4 * k, 0.4 * k))],
-                    )
-                })
-                .collect(),
-        },
-        wcam_weight(quick),
-    ]
-}
-
-/// Case 6's bench: GGX roughness of its coating (the built-in scene's 0.03 first).
-fn case6(quick: bool) -> Vec<Param> {
-    let rs: &[f64] = if quick { &[0.03] } else { &[0.03, 0.01, 0.1] };
-    vec![
-        Param {
-            name: "bench roughness",
-            levels: rs
-                .iter()
-                .map(|&r| level(format!("{r}"), &[("bench_roughness", format!("{r:?}"))]))
-                .collect(),
-        },
-        wcam_weight(quick),
-    ]
-}
-
-fn keep_all(_: &Config) -> bool {
-    true
-}
-
-/// The parameters of case `number` and the configurations of its grid.
-pub fn case_grid(number: u32, quick: bool) -> (Vec<Param>, Vec<Config>) {
-    let (params, keep): (Vec<Param>, fn(&Config) -> bool) = match number {
-        3 => (case3(quick), case3_keep),
-        4 => (case4(quick), keep_all),
-        6 => (case6(quick), keep_all),
-        _ => (vec![wcam_weight(quick)], keep_all),
-    };
-    let configs = grid(&params, keep);
-    (params, configs)
 }
 
 /// Seeds per configuration.
@@ -307,13 +170,14 @@ impl Study {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::grids::case_grid;
 
     #[test]
     fn the_baseline_comes_first_and_a_closed_box_needs_the_camera_inside() {
         let (params, configs) = case_grid(3, false);
         assert_eq!(configs[0].levels, vec![0; params.len()]);
         assert_eq!(configs[0].get("camera_z"), Some("-0.8"));
-        assert!(configs.iter().all(case3_keep));
+        assert!(configs.iter().all(crate::grids::case3_keep));
         // 3 distances × 3 heights open, 3 heights closed (inside only), × 2 WCAM readings.
         assert_eq!(configs.len(), (9 + 3) * 2);
         let (_, quick) = case_grid(3, true);
@@ -331,7 +195,11 @@ mod tests {
                         assert!(job.contains("scene ="), "{name}");
                         if let Some(t) = scene {
                             let text = crate::shot::fill_template(t, c, name).unwrap();
-                            let path = std::path::Path::new("scene.toml");
+                            // Beside the templates, where the files they read are.
+                            let path = std::path::Path::new(concat!(
+                                env!("CARGO_MANIFEST_DIR"),
+                                "/../../paper/scenes/scene.toml"
+                            ));
                             if let Err(e) = eyeadapt_scene::load_scene_str(&text, path) {
                                 panic!("case {} {:?}: {e:?}", case.number, c.labels);
                             }

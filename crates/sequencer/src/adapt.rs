@@ -21,9 +21,8 @@ use crate::estimator::{Estimator, parse_estimator_list};
 use eyeadapt_color::{
     Cat, DegreeModel, DominantBy, DominantOptions, Estimate, FrameAovs, GreyEdgeOptions,
     GreyWorldOptions, LightPower, NcnsOptions, ShadesOfGreyOptions, Surround, WcamOptions,
-    WcamSpecular, WhitePatchOptions, adaptation_matrix_rgb, cct_mccamy, dominant, grey_edge,
-    grey_world, ncns, rgb_to_xyz, shades_of_grey, wcam, white_patch, xyz_to_rgb, xyz_to_uv,
-    xyz_to_xy,
+    WhitePatchOptions, adaptation_matrix_rgb, cct_mccamy, dominant, grey_edge, grey_world, ncns,
+    rgb_to_xyz, shades_of_grey, wcam, white_patch, xyz_to_rgb, xyz_to_uv, xyz_to_xy,
 };
 use eyeadapt_tracer::{
     EyeSettings, Frame, PathSettings, SceneData, View, eye_direct_per_light, eye_sensor_until,
@@ -148,9 +147,6 @@ impl EstimatorConfig {
                 "estimators.eye.target_std_err_uv {} must be a finite number >= 0 (0 = fixed budget)",
                 self.eye.target_std_err_uv
             ));
-        }
-        if self.wcam.specular != WcamSpecular::Include {
-            errors.push("estimators.wcam.specular: only \"include\" is implemented by the renderer (exclude_delta and diffuse_only are not)".into());
         }
         for r in [
             self.wcam.validate(),

@@ -40,7 +40,7 @@ use crate::estimator::Estimator;
 use crate::frames::FrameSet;
 use crate::pipeline::{Outputs, Pipeline, Sampling};
 use eyeadapt_scene::{CameraMotion, Scene, SourceMap};
-use eyeadapt_tracer::{PathSettings, RenderSettings, SceneData, View};
+use eyeadapt_tracer::{AchromaticSpecular, PathSettings, RenderSettings, SceneData, View};
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -154,11 +154,22 @@ impl Job {
                 seed: self.seed,
                 frame: 0,
                 filter: self.scene.render.filter.unwrap_or_default(),
+                wcam_specular: renderer_specular(self.estimator_config.wcam.specular),
             },
             estimators: &self.estimators,
             config: &self.estimator_config,
             adaptation: &self.adaptation,
         }
+    }
+}
+
+/// The renderer's side of `estimators.wcam.specular` (estimators.md §2.3): the WCAM re-render
+/// is made while tracing.
+pub fn renderer_specular(s: eyeadapt_color::WcamSpecular) -> AchromaticSpecular {
+    match s {
+        eyeadapt_color::WcamSpecular::Include => AchromaticSpecular::Include,
+        eyeadapt_color::WcamSpecular::ExcludeDelta => AchromaticSpecular::ExcludeDelta,
+        eyeadapt_color::WcamSpecular::DiffuseOnly => AchromaticSpecular::DiffuseOnly,
     }
 }
 

@@ -55,6 +55,7 @@ impl Sampling {
             seed: self.seed.or(scene.render.seed).unwrap_or(0),
             frame: 0,
             filter: scene.render.filter.unwrap_or_default(),
+            wcam_specular: Default::default(),
         }
     }
 }

@@ -314,6 +314,36 @@ impl Bsdf {
         }
     }
 
+    /// The value of the diffuse lobe alone (reflection only; zero for BSDFs without one), for
+    /// the WCAM re-render's `diffuse_only` mode (estimators.md §2.3). A Lambertian BSDF's is
+    /// its [`Bsdf::eval`], bit for bit.
+    pub fn eval_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return Vec3A::ZERO;
+        }
+        match *self {
+            Bsdf::Diffuse { reflectance } => reflectance * FRAC_1_PI,
+            Bsdf::Plastic {
+                diffuse,
+                inv_eta2,
+                table,
+                ..
+            } => {
+                let ti = table.transmittance(wi.z);
+                let to = table.transmittance(wo.z);
+                diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
+            }
+            Bsdf::PPlastic(p) => p.eval_diffuse(wo, wi),
+            Bsdf::Principled(p) => p.eval_diffuse(wo, wi),
+            Bsdf::PrincipledThin(p) => p.eval_diffuse(wo, wi),
+            Bsdf::RoughConductor { .. }
+            | Bsdf::Mirror { .. }
+            | Bsdf::Dielectric { .. }
+            | Bsdf::ThinDielectric { .. }
+            | Bsdf::RoughDielectric(_) => Vec3A::ZERO,
+        }
+    }
+
     fn plastic_spec_prob(wo: Vec3A, table: &PlasticTable, spec_weight: f32) -> f32 {
         let t = table.transmittance(wo.z);
         let ps = (1.0 - t) * spec_weight;

@@ -183,15 +183,7 @@ pub fn eye_sensor_until(
         let dir = (r * (st * phi.cos()) + u * (st * phi.sin()) + axis * mu).normalize();
         if (!settings.fov_only || view.in_frustum(basis, dir)) && mu > -1.0 {
             let pdf = (1.0 + mu) / (4.0 * PI);
-            let p = trace(
-                scene,
-                eye,
-                dir,
-                Origin::Sampled { pdf },
-                &mut s,
-                path,
-                false,
-            );
+            let p = trace(scene, eye, dir, Origin::Sampled { pdf }, &mut s, path, None);
             x += p.l * PI;
         }
         x.is_finite().then_some(x)

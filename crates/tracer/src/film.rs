@@ -9,7 +9,7 @@
 //! samples are splatted into a private buffer covering the rows they reach; the buffers are
 //! then added into the image one row after another, in row order, so the sums (and bits) do
 //! not depend on the thread count. The AOVs stay per-pixel means.
-use crate::integrator::{Origin, PathSettings, trace};
+use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace};
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use eyeadapt_scene::{PixelFilter, Projection};
@@ -174,6 +174,8 @@ pub struct RenderSettings {
     pub frame: u32,
     /// How samples become pixels of the beauty image.
     pub filter: PixelFilter,
+    /// How the WCAM re-render (the `achromatic` AOV) takes specular first bounces.
+    pub wcam_specular: AchromaticSpecular,
 }
 
 /// Counters of one render.
@@ -274,7 +276,7 @@ pub fn render_with_progress(
                 Origin::Camera,
                 &mut s,
                 settings.path,
-                true,
+                Some(settings.wcam_specular),
             );
             let parts = [p.l, p.achromatic, p.irradiance, p.albedo];
             if parts.iter().any(|v| !v.is_finite()) {

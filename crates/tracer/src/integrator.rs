@@ -30,6 +30,22 @@ impl Default for PathSettings {
     }
 }
 
+/// How the WCAM achromatic re-render (the `achromatic` AOV) takes specular first bounces
+/// (estimators.md §2.3, the job file's `estimators.wcam.specular`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AchromaticSpecular {
+    /// Every lobe of the first surface, in grey (the default).
+    #[default]
+    Include,
+    /// Samples whose first scattering event is a delta lobe (a mirror, glass, a pane; not a
+    /// mask's hole) add nothing to the re-render.
+    ExcludeDelta,
+    /// As `ExcludeDelta`, and at the first non-delta surface only its diffuse lobe, in grey:
+    /// A = Y(f_d)·L·cos/pdf, which is Y(ρ_d)·E/π for a Lambertian base. On a Lambertian
+    /// surface this is `Include`, bit for bit.
+    DiffuseOnly,
+}
+
 /// What one camera sample returns.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PathSample {
@@ -118,7 +134,13 @@ pub fn offset(p: Vec3A, n: Vec3A) -> Vec3A {
 /// (estimators.md §2.2 b), guarded where a channel is nearly black.
 #[inline]
 pub fn achromatic_ratio(f: Vec3A) -> Vec3A {
-    let y = luminance(f);
+    grey_ratio(luminance(f), f)
+}
+
+/// Per-channel factor that turns a BSDF value `f` into the grey of luminance `y`, guarded
+/// where a channel is nearly black.
+#[inline]
+pub fn grey_ratio(y: f32, f: Vec3A) -> Vec3A {
     let r = |c: f32| (y / c.max(1e-8)).min(1e3);
     Vec3A::new(r(f.x), r(f.y), r(f.z))
 }
@@ -147,7 +169,7 @@ pub fn visible(
 }
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
-/// (the AOVs are only filled when `aovs` is set).
+/// (the AOVs are only filled when `aovs` is given, with the WCAM re-render's specular mode).
 ///
 /// The first thing drawn from `s` is the first vertex's 2-D light sample: callers draw their
 /// direction from dimensions 0-1 of a chunk and leave `s` there, so that the two share it.
@@ -161,7 +183,7 @@ pub fn trace(
     from: Origin,
     s: &mut SampleStream,
     settings: PathSettings,
-    aovs: bool,
+    aovs: Option<AchromaticSpecular>,
 ) -> PathSample {
     let mut scratch = scene.geometry.scratch();
     // The first vertex's light sample comes from the dimensions right after the caller's

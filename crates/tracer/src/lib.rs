@@ -53,7 +53,7 @@ pub use crate::eye::{
 };
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
 pub use crate::geometry::{Geometry, Hit, RayScratch};
-pub use crate::integrator::{Origin, PathSample, PathSettings, trace};
+pub use crate::integrator::{AchromaticSpecular, Origin, PathSample, PathSettings, trace};
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::lights::LightSet;
 pub use crate::material::Materials;

@@ -15,9 +15,11 @@
 //! paths at a time and get the same result as [`crate::trace`].
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::bump::Terminator;
+use crate::emitter::luminance;
 use crate::geometry::RayScratch;
 use crate::integrator::{
-    Frame, Origin, PathSample, achromatic_ratio, irradiance_ratio, offset, power_heuristic,
+    AchromaticSpecular, Frame, Origin, PathSample, achromatic_ratio, grey_ratio, irradiance_ratio,
+    offset, power_heuristic,
 };
 use crate::interaction::SurfaceInteraction;
 use crate::lights::LightSet;
@@ -49,6 +51,11 @@ pub struct PathState {
     ka: Vec3A,
     ke: Vec3A,
     aovs: bool,
+    /// The WCAM re-render's specular mode.
+    wcam: AchromaticSpecular,
+    /// The path's first scattering event was a delta lobe and the mode leaves such samples
+    /// out of the WCAM re-render.
+    wcam_dropped: bool,
     /// True until the AOV vertex has scattered (every vertex so far was a delta event).
     specular_chain: bool,
     /// The last scattering event went straight through a see-through surface (`shadow.rs`).
@@ -228,7 +235,13 @@ impl Vertex {
 
 impl PathState {
     #[inline]
-    pub fn new(o: Vec3A, d: Vec3A, from: Origin, u_light: [f32; 2], aovs: bool) -> PathState {
+    pub fn new(
+        o: Vec3A,
+        d: Vec3A,
+        from: Origin,
+        u_light: [f32; 2],
+        aovs: Option<AchromaticSpecular>,
+    ) -> PathState {
         PathState {
             o,
             d,
@@ -240,11 +253,29 @@ impl PathState {
             u_light,
             ka: Vec3A::ZERO,
             ke: Vec3A::ZERO,
-            aovs,
+            aovs: aovs.is_some(),
+            wcam: aovs.unwrap_or_default(),
+            wcam_dropped: false,
             specular_chain: true,
             crossed: false,
             travelled: 0.0,
             out: PathSample::default(),
+        }
+    }
+
+    /// The factor that turns light reaching the camera through the AOV vertex `v` (its BSDF
+    /// value `f` towards local direction `wi_l`, `g` its bump shadowing there) into the WCAM
+    /// re-render's contribution, in the path's specular mode.
+    #[inline]
+    fn achromatic_factor(&self, v: &Vertex, f: Vec3A, wi_l: Vec3A, g: f32) -> Vec3A {
+        if self.wcam_dropped {
+            return Vec3A::ZERO;
+        }
+        match self.wcam {
+            AchromaticSpecular::Include | AchromaticSpecular::ExcludeDelta => achromatic_ratio(f),
+            AchromaticSpecular::DiffuseOnly => {
+                grey_ratio(luminance(v.bsdf.eval_diffuse(v.wo_l, wi_l) * g), f)
+            }
         }
     }
 
@@ -353,7 +384,8 @@ impl PathState {
             self.out.l += c;
             // The surface's own BSDF, not its mask's share: the irradiance of a half-transparent
             // surface is counted with its opacity as the probability of scattering there.
-            self.out.achromatic += c * achromatic_ratio(f_surface);
+            self.out.achromatic +=
+                c * self.achromatic_factor(v, f_surface, wi_l, v.shadowing(ls.wi));
             self.out.irradiance += c * irradiance_ratio(f_surface);
         } else {
             self.add_through_later_vertex(c);
@@ -416,10 +448,16 @@ impl PathState {
         if last {
             return false;
         }
+        // Every event of the specular chain is a delta one, so a delta lobe here (not a mask's
+        // hole, not a crossing of a see-through surface) means the path's first scattering
+        // event was one.
+        if self.specular_chain && bs.delta && !through {
+            self.wcam_dropped = self.wcam != AchromaticSpecular::Include;
+        }
         if self.specular_chain && !bs.delta {
             self.specular_chain = false;
             self.out.albedo = self.beta * bs.weight;
-            self.ka = achromatic_ratio(bs.f);
+            self.ka = self.achromatic_factor(v, bs.f, bs.wi, v.shadowing(wi));
             self.ke = irradiance_ratio(bs.f);
         }
         self.beta *= bs.weight;

@@ -54,6 +54,13 @@ impl PPlastic {
         self.specular * spec + self.diffuse * (FRAC_1_PI * ti * to)
     }
 
+    /// The attenuated Lambertian base alone (both directions above the surface).
+    pub fn eval_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
+        let ti = 1.0 - fresnel_dielectric(wi.z, self.eta);
+        let to = 1.0 - fresnel_dielectric(wo.z, self.eta);
+        self.diffuse * (FRAC_1_PI * ti * to)
+    }
+
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;

@@ -197,6 +197,16 @@ impl Principled {
         v
     }
 
+    /// The diffuse reflection lobe alone (front side), without sheen.
+    pub fn eval_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
+        let (brdf, _) = self.weights();
+        if wo.z <= 0.0 || wi.z <= 0.0 || !self.front || brdf <= 0.0 {
+            return Vec3A::ZERO;
+        }
+        let dot_i = self.half(wo, wi).dot_i;
+        brdf * diffuse(self.base, self.roughness, self.flatness, wo.z, wi.z, dot_i)
+    }
+
     /// Density of [`Self::sample`] over solid angle.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z <= 0.0 || wi.z == 0.0 || (!self.front && !self.transmits()) {

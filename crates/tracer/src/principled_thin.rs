@@ -125,6 +125,24 @@ impl PrincipledThin {
         v
     }
 
+    /// The diffuse reflection lobe alone, without sheen.
+    pub fn eval_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Vec3A {
+        let (st, dt) = (self.spec_trans, self.diff_trans);
+        if wo.z <= 0.0 || wi.z <= 0.0 || st >= 1.0 || dt >= 1.0 {
+            return Vec3A::ZERO;
+        }
+        let wh = (wo + mirrored(wi)).normalize_or_zero();
+        let w = (1.0 - st) * (1.0 - dt);
+        w * diffuse(
+            self.base,
+            self.roughness,
+            self.flatness,
+            wo.z,
+            wi.z,
+            wi.dot(wh),
+        )
+    }
+
     /// Density of [`Self::sample`] over solid angle.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z <= 0.0 || wi.z == 0.0 {

@@ -288,3 +288,44 @@ fn eye_sensor_agrees_with_a_cube_map_under_sky_and_sun() {
     assert!(dxy <= 7e-4, "Δxy = {dxy:.2e}");
     assert!((lum(e.mean_rgb) / lum(cube) - 1.0).abs() < 0.01);
 }
+
+fn uv(rgb: DVec3) -> (f64, f64) {
+    let (x, y) = xy(rgb);
+    let d = -2.0 * x + 12.0 * y + 3.0;
+    (4.0 * x / d, 9.0 * y / d)
+}
+
+/// The audit of issue 22 in code: on the paper's scenes lit by area lights only (no delta light,
+/// whose direct term no camera ray sees), the eye sensor and the cube-map integral from its
+/// position agree in u′v′ within a few 1e-4 (the audit found 2e-4; with 64² faces at 64 spp
+/// the three differ by 7.7e-5, 9.6e-5 and 2.5e-5, so what is left here is the cube map's noise).
+#[test]
+fn eye_sensor_agrees_with_a_cube_map_in_the_paper_scenes() {
+    for name in ["cornell-green-floor", "two-rooms", "three-rooms"] {
+        let scene = eyeadapt_scene::load_builtin(name).unwrap();
+        let data = SceneData::new(&scene);
+        let view = View::from_camera(scene.camera.as_ref().unwrap());
+        let depth = 8;
+        let path = PathSettings {
+            max_depth: depth,
+            rr_depth: 5,
+        };
+        let e = eye_sensor(
+            &data,
+            &view,
+            &EyeSettings {
+                samples: 1 << 16,
+                ..EyeSettings::default()
+            },
+            0,
+            path,
+        );
+        let cube = cube_map_estimate(&data, &view, 32, 32, depth);
+        let ((eu, ev), (cu, cv)) = (uv(e.mean_rgb), uv(cube));
+        let duv = ((eu - cu).powi(2) + (ev - cv).powi(2)).sqrt();
+        eprintln!(
+            "{name}: eye u′v′ ({eu:.5}, {ev:.5}), cube map ({cu:.5}, {cv:.5}), Δu′v′ {duv:.2e}"
+        );
+        assert!(duv < 6e-4, "{name}: Δu′v′ = {duv:.2e}");
+    }
+}

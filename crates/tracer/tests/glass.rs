@@ -44,6 +44,7 @@ fn shoot(s: &Scene, spp: u32, max_depth: i32) -> Frame {
         seed: 3,
         frame: 0,
         filter: Default::default(),
+        wcam_specular: Default::default(),
     };
     render(&SceneData::new(s), &view, &settings)
 }

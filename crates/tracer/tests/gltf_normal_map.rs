@@ -90,6 +90,7 @@ fn brightness(normal: Option<[u8; 3]>, rotation: [f32; 4]) -> f32 {
         seed: 1,
         frame: 0,
         filter: Default::default(),
+        wcam_specular: Default::default(),
     };
     let f = render(
         &SceneData::new(&scene),

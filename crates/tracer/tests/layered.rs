@@ -43,6 +43,7 @@ fn shoot(s: &Scene, spp: u32, max_depth: i32) -> Frame {
         seed: 5,
         frame: 0,
         filter: Default::default(),
+        wcam_specular: Default::default(),
     };
     render(&SceneData::new(s), &view, &settings)
 }

@@ -15,6 +15,7 @@ fn settings(filter: PixelFilter) -> RenderSettings {
         seed: 3,
         frame: 0,
         filter,
+        wcam_specular: Default::default(),
     }
 }
 

@@ -1,4 +1,5 @@
 //! Case 4: statue, red spot (Fig. 9).
+use super::spot::{self, Spot};
 use super::*;
 use crate::RegionMean;
 
@@ -11,28 +12,27 @@ pub(super) fn case4(runs: &[JobRun]) -> (&'static str, Out) {
     let scene = run.scene();
     let es = ests(run, shot);
     let mut o = Out::new();
-    let spot = scene
-        .lights
-        .iter()
-        .find_map(|l| match l {
-            Light::Spot {
-                position,
-                direction,
-                cone_deg,
-                ..
-            } => Some((*position, *direction, *cone_deg)),
-            _ => None,
-        })
-        .expect("the statue scene has a spot light");
+    let spot = Spot::of(scene).expect("the statue scene has a spot light");
+    let data = eyeadapt_tracer::SceneData::new(scene);
     let statue = Region::from_material(scene, "statue", "statue", 0.0);
-    let facing_away = statue.clone().facing_away_from(spot.0);
-    let lit_px = lit_pixels(scene, shot, &statue, &facing_away, spot);
-    // "The part" the spot does not light: every other statue pixel (facing away from the
-    // spot, or facing it outside the cone).
-    let unlit_px: Vec<usize> = crate::measure::region_pixels(scene, img, &shot.view, &statue)
-        .into_iter()
+    let statue_px = crate::measure::region_pixels(scene, img, &shot.view, &statue);
+    // The lit side: statue pixels the spot reaches directly (inside its cone, not shadowed).
+    let lit_px = spot::lit(&data, &spot, img, &shot.view, &statue_px);
+    // "The part" the spot does not light: every other statue pixel.
+    let unlit_px: Vec<usize> = statue_px
+        .iter()
+        .copied()
         .filter(|i| !lit_px.contains(i))
         .collect();
+    let statue_id = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "statue")
+        .expect("the statue scene has a statue material") as u32;
+    let on_statue = spot::power_share(&data, &spot, statue_id);
+    let lit_share = lit_px.len() as f64 / statue_px.len().max(1) as f64;
+    o.metric("spot.power_on_statue", on_statue);
+    o.metric("lit.share", lit_share);
     let mean_of = |px: &[usize], v: &[[f32; 3]]| {
         px.iter()
             .map(|&i| glam::Vec3::from(v[i]).as_dvec3())
@@ -50,20 +50,22 @@ pub(super) fn case4(runs: &[JobRun]) -> (&'static str, Out) {
     let _ = writeln!(o.md, "**Setup.** {}", setup_line(run));
     let _ = writeln!(
         o.md,
-        "Statue reflectance {}; white ceiling light {}; red spot at {} with intensity {}. Read-outs: the statue's lit side = statue pixels facing the spot and inside its cone ({} pixels); its unlit part = every other statue pixel ({} pixels). The expected adaptation colour is not known (§5.2); the main light is D65 white.\n",
+        "Statue reflectance {}; white ceiling light {}; red spot at {} with intensity {}, cone {}° (core {}°). Read-outs: the statue's lit side = statue pixels the spot lights directly, inside its cone and not shadowed ({} pixels); its unlit part = every other statue pixel ({} pixels). The expected adaptation colour is not known (§5.2); the main light is D65 white.\n",
         fmt3(rho),
         fmt3(light_colour(scene)),
-        fmt3(spot.0.as_dvec3()),
-        scene
-            .lights
-            .iter()
-            .find_map(|l| match l {
-                Light::Spot { intensity, .. } => Some(fmt3(intensity.as_dvec3())),
-                _ => None,
-            })
-            .unwrap_or_default(),
+        fmt3(spot.position.as_dvec3()),
+        fmt3(spot.intensity.as_dvec3()),
+        spot.cone_deg,
+        spot.falloff_deg,
         lit_px.len(),
         unlit_mean.pixels
+    );
+    let _ = writeln!(
+        o.md,
+        "Where the spot's light goes, from the scene's geometry (its power over a 128 × 128 grid of directions in its cone, weighted by its falloff): {:.1} % of it lands first on the statue, {:.1} % on the pedestal, floor and walls. The lit side is {:.1} % of the statue's visible pixels at this size (the design check measures it at the study's).\n",
+        100.0 * on_statue,
+        100.0 * (1.0 - on_statue),
+        100.0 * lit_share
     );
     o.metric("unlit.pixels", unlit_mean.pixels as f64);
     let unlit_e = uv_of_rgb(unlit_mean.irradiance);
@@ -90,30 +92,6 @@ fn white_hue(e: &Estimate) -> f64 {
     }
     let rgb = xyz_to_rgb(e.normalized());
     eyeadapt_color::hsv(rgb.max(DVec3::ZERO) / rgb.max_element().max(1e-12)).h
-}
-
-/// The statue's lit side: statue pixels facing the spot and inside its cone.
-fn lit_pixels(
-    scene: &Scene,
-    shot: &Shot,
-    statue: &Region,
-    unlit: &Region,
-    spot: (glam::Vec3, glam::Vec3, f32),
-) -> Vec<usize> {
-    let img = shot.image.as_ref().expect("stills keep their image");
-    let all = crate::measure::region_pixels(scene, img, &shot.view, statue);
-    let away = crate::measure::region_pixels(scene, img, &shot.view, unlit);
-    let basis = shot.view.basis();
-    let cos_cone = spot.2.to_radians().cos();
-    all.into_iter()
-        .filter(|i| !away.contains(i))
-        .filter(|&i| {
-            let (x, y) = (i % img.width, i / img.width);
-            let d = shot.view.ray_dir(basis, x as f32 + 0.5, y as f32 + 0.5);
-            let p = shot.view.position + glam::Vec3::from(d) * img.depth[i];
-            (p - spot.0).normalize().dot(spot.1.normalize()) >= cos_cone
-        })
-        .collect()
 }
 
 /// One row per estimator (its white's hue, the unlit and lit sides after adaptation).
@@ -205,6 +183,26 @@ fn verdicts(o: &mut Out) {
         vec![
             below("Δu′v′ to D65, eye − WCAM", de - dw, 0.0),
             below("unlit (white) side S, eye − WCAM", eus - wus, 0.0),
+        ],
+    );
+    o.claim(
+        "(design check) the spot lights only the statue, and only part of it",
+        vec![
+            above(
+                "share of the spot's power landing on the statue",
+                m["spot.power_on_statue"],
+                0.95,
+            ),
+            below(
+                "lit share of the statue's visible pixels",
+                m["lit.share"],
+                0.75,
+            ),
+            above(
+                "lit share of the statue's visible pixels",
+                m["lit.share"],
+                0.05,
+            ),
         ],
     );
 }

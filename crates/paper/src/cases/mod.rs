@@ -10,6 +10,7 @@ mod case3;
 mod case4;
 mod case5;
 mod case6;
+mod spot;
 
 use super::measure::{
     Region, equal_luminance_hsv, hue_diff, pixels_in_box, reflectance, region_mean,
@@ -21,7 +22,7 @@ use eyeadapt_color::{
     D65_XYZ, Estimate, FrameAovs, SeriesParams, SeriesPoint, delta_e_2000, delta_uv, hsv_of_linear,
     luminance, rgb_to_xyz, series_metrics, wcam, whiteness, xyz_to_lab, xyz_to_rgb, xyz_to_uv,
 };
-use eyeadapt_scene::{Light, Scene};
+use eyeadapt_scene::Scene;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_sequencer::adapt::{cat_matrix, white_for_cat};
 use eyeadapt_sequencer::job::Job;
@@ -129,7 +130,11 @@ fn setup_line(run: &JobRun) -> String {
     let j = &run.job;
     let source = j.scene.source.display().to_string();
     let files = match source.strip_prefix("builtin:") {
-        Some(b) => format!("`configs/{}.toml` over `builtin:{b}`", run.name),
+        // The job is a template of paper/scenes/ whose baseline is the configs/ job.
+        Some(b) => format!(
+            "`configs/{}.toml` (its camera a parameter of the study) over `builtin:{b}`",
+            run.name
+        ),
         // A template of paper/scenes/, filled (the work directory holds the filled files).
         None => "the job and scene templates of `paper/scenes/`, baseline configuration".into(),
     };
