@@ -32,7 +32,13 @@ pub fn sensitivity_svg(case: &CaseInfo, st: &Study) -> String {
     let width = (PAD + np as f64 * (PANEL_W + PAD))
         .max(PAD + 18.0 + legend_w)
         .max(760.0);
-    let legend_y = PAD + PANEL_H + 50.0;
+    // Tick labels wider than their slot alternate between two rows.
+    let crowded = |p: &crate::study::Param| {
+        let widest = p.levels.iter().map(|l| l.label.chars().count()).max();
+        6.0 * widest.unwrap_or(0) as f64 > PANEL_W / p.levels.len().max(1) as f64 - 4.0
+    };
+    let any_crowded = st.params.iter().any(crowded);
+    let legend_y = PAD + PANEL_H + 50.0 + if any_crowded { 12.0 } else { 0.0 };
     let height = legend_y + 18.0 * claims.len() as f64 + 20.0;
     let mut s = String::new();
     let _ = writeln!(
@@ -49,11 +55,12 @@ pub fn sensitivity_svg(case: &CaseInfo, st: &Study) -> String {
     for (pi, p) in st.params.iter().enumerate() {
         let x0 = PAD + pi as f64 * (PANEL_W + PAD);
         let y0 = PAD;
+        let rows = if crowded(p) { 12.0 } else { 0.0 };
         let _ = writeln!(
             s,
             r##"<rect x="{x0}" y="{y0}" width="{PANEL_W}" height="{PANEL_H}" fill="none" stroke="#999"/><text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
             x0 + PANEL_W / 2.0,
-            y0 + PANEL_H + 32.0,
+            y0 + PANEL_H + 32.0 + rows,
             esc(p.name)
         );
         let y_of = |f: f64| y0 + PANEL_H * (1.0 - f);
@@ -79,7 +86,7 @@ pub fn sensitivity_svg(case: &CaseInfo, st: &Study) -> String {
                 s,
                 r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
                 x_of(l),
-                y0 + PANEL_H + 14.0,
+                y0 + PANEL_H + 14.0 + rows * (l % 2) as f64,
                 esc(&lev.label)
             );
         }
