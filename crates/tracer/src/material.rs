@@ -458,33 +458,21 @@ impl Materials {
             SceneBsdf::Diffuse { reflectance } => Bsdf::diffuse(self.rgb(reflectance, si)),
             SceneBsdf::Conductor {
                 alpha,
-                alpha_v: None,
+                alpha_v,
                 distribution,
                 eta,
                 k,
                 specular_reflectance,
-            } => Bsdf::conductor(
-                self.number(alpha, si),
-                distribution,
-                eta.into(),
-                k.into(),
-                self.rgb(specular_reflectance, si),
-            ),
-            SceneBsdf::Conductor {
-                alpha,
-                alpha_v: Some(alpha_v),
-                distribution,
-                eta,
-                k,
-                specular_reflectance,
-            } => Bsdf::conductor_uv(
-                self.number(alpha, si),
-                self.number(alpha_v, si),
-                distribution,
-                eta.into(),
-                k.into(),
-                self.rgb(specular_reflectance, si),
-            ),
+            } => {
+                let (a, specular) = (self.number(alpha, si), self.rgb(specular_reflectance, si));
+                match alpha_v {
+                    None => Bsdf::conductor(a, distribution, eta.into(), k.into(), specular),
+                    Some(v) => {
+                        let v = self.number(v, si);
+                        Bsdf::conductor_uv(a, v, distribution, eta.into(), k.into(), specular)
+                    }
+                }
+            }
             SceneBsdf::Plastic {
                 reflectance,
                 alpha,
