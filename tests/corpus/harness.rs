@@ -47,6 +47,20 @@ pub fn must(cmd: &mut Command) {
     assert_eq!(code, 0, "setup command failed: {cmd:?}\n{err}");
 }
 
+/// Renders chunk `i` of two (frames 0-3, two per chunk) of the corpus job into `root/NAMEi`.
+pub fn render_chunk(root: &Path, name: &str, i: usize) -> PathBuf {
+    let d = root.join(format!("{name}{i}"));
+    must(
+        eyeadapt()
+            .args(["sequence", "--frames", "0-3", "--chunk-size", "2"])
+            .args(["--chunk-index", &i.to_string()])
+            .args(SEQ)
+            .arg("--out")
+            .arg(&d),
+    );
+    d
+}
+
 /// Every file of a directory with its bytes and modification time.
 pub fn snapshot(dir: &Path) -> BTreeMap<String, (Vec<u8>, std::time::SystemTime)> {
     common::walk(dir)

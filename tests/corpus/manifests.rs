@@ -47,18 +47,7 @@ fn a_foreign_manifest_with_a_short_hash_is_refused_not_a_panic() {
 fn merge_refuses_hostile_chunk_manifests() {
     let t = tempfile::tempdir().unwrap();
     let root = t.path();
-    let chunk = |i: usize| {
-        let d = root.join(format!("c{i}"));
-        must(
-            eyeadapt()
-                .args(["sequence", "--frames", "0-3", "--chunk-size", "2"])
-                .args(["--chunk-index", &i.to_string()])
-                .args(SEQ)
-                .arg("--out")
-                .arg(&d),
-        );
-        d
-    };
+    let chunk = |i: usize| render_chunk(root, "c", i);
     let (c0, c1) = (chunk(0), chunk(1));
     let manifest = std::fs::read_to_string(c1.join("manifest.json")).unwrap();
     // 1. A short hash that differs from the other chunk's.

@@ -37,18 +37,7 @@ fn bad_jobs_and_frame_specs_exit_2_and_leave_a_sequence_alone() {
 fn bad_chunk_outputs_exit_2_and_leave_a_merge_alone() {
     let t = tempfile::tempdir().unwrap();
     let root = t.path();
-    let chunk = |i: usize| {
-        let d = root.join(format!("chunk{i}"));
-        must(
-            eyeadapt()
-                .args(["sequence", "--frames", "0-3", "--chunk-size", "2"])
-                .args(["--chunk-index", &i.to_string()])
-                .args(SEQ)
-                .arg("--out")
-                .arg(&d),
-        );
-        d
-    };
+    let chunk = |i: usize| render_chunk(root, "chunk", i);
     let (chunk0, chunk1) = (chunk(0), chunk(1));
     let merge_out = root.join("merge-out");
     must(
