@@ -25,6 +25,7 @@ mod geometry;
 mod integrator;
 mod interaction;
 mod light_pick;
+mod light_tree;
 mod lights;
 mod material;
 mod microfacet;

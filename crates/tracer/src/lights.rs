@@ -447,6 +447,35 @@ mod tests {
     }
 
     #[test]
+    fn many_lights_through_the_light_tree_keep_light_sampling_exact() {
+        // 24 squares above the receiver (sizes 0.2-1.35 m, heights 0.6-3.4 m) and 8 under it
+        // facing up, more than SPATIAL_MAX_UNITS: the choice goes through the tree.
+        let mut tris = Vec::new();
+        let mut exact = 0.0;
+        for k in 0..24 {
+            let (s, h) = (0.2 + 0.05 * k as f32, 0.6 + 0.12 * k as f32);
+            tris.extend(square_light(s, h, k % 2 == 0));
+            exact += square_irradiance(s, h);
+        }
+        for k in 0..8 {
+            let mut under = square_light(1.0, -0.3 - 0.2 * k as f32, false);
+            for t in under.iter_mut() {
+                t.swap(1, 2);
+            }
+            tris.extend(under);
+        }
+        let lights = LightSet::build(white(&tris), &[], None, 10.0, &[]);
+        assert!(lights.picker.has_tree());
+        for receiver in [Some(Vec3A::Y), None] {
+            let e = irradiance_with(&lights, 65_536, receiver);
+            assert!(
+                (e / exact - 1.0).abs() < 3e-3,
+                "receiver {receiver:?}: E {e} vs exact {exact}"
+            );
+        }
+    }
+
+    #[test]
     fn quads_are_sampled_as_parallelograms_with_unchanged_density() {
         let (s, h) = (1.0f32, 0.7f32);
         let exact = square_irradiance(s, h);
