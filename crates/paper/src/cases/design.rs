@@ -76,6 +76,37 @@ fn case4_design_the_spot_lights_only_the_statue_and_part_of_it() {
     }
 }
 
+/// Case 4: wider cones from the same place spill off the statue (the built-in scene's 18° cone
+/// puts most of the spot's power on the pedestal and the room), which is why the grid stops at
+/// the widest cone that fits.
+#[test]
+fn case4_design_wider_cones_spill_onto_the_room() {
+    let (_, configs) = case_grid(4, false);
+    let mut config = configs[0].clone();
+    let mut shares = Vec::new();
+    for cone in [5.0f64, 8.0, 12.0, 18.0] {
+        for (k, v) in config.fill.iter_mut() {
+            match *k {
+                "spot_cone_deg" => *v = format!("{cone:?}"),
+                "spot_falloff_deg" => *v = format!("{:?}", 0.75 * cone),
+                _ => {}
+            }
+        }
+        let scene = scene(4, &config);
+        let data = SceneData::new(&scene);
+        let spot = Spot::of(&scene).unwrap();
+        let share = spot::power_share(&data, &spot, material_id(&scene, "statue"));
+        println!(
+            "case 4, cone {cone}°: {:.1} % of the spot's power on the statue",
+            100.0 * share
+        );
+        shares.push(share);
+    }
+    assert!(shares[0] > 0.999, "{shares:?}");
+    assert!(shares.windows(2).all(|w| w[1] < w[0]), "{shares:?}");
+    assert!(shares[3] < 0.5, "{shares:?}");
+}
+
 /// A flat emitter: its rectangle in the plane y = `y` and its luminance.
 struct Emitter {
     name: String,
