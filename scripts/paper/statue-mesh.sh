@@ -6,7 +6,8 @@
 #   bash scripts/paper/statue-mesh.sh FILE.deb   # an already downloaded libcgal-demo package
 #
 # Needs dpkg-deb, tar, python3 with venv; VENV=DIR reuses a virtual environment (default: a
-# temporary one, with fast-simplification 0.2.0 from PyPI). Prints the red spot's design.
+# temporary one, with fast-simplification 0.2.0 from PyPI). Then prints the red spot's design
+# (spot_design.py).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -30,3 +31,4 @@ fi
 mkdir -p "$(dirname "$out")"
 "$venv/bin/python" "$here/statue_mesh.py" "$work/$member" "$out"
 ls -l "$out"
+"$venv/bin/python" "$here/spot_design.py" "$out"

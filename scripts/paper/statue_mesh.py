@@ -8,11 +8,8 @@ lion statue, 10 000 vertices, 19 994 triangles, y up, facing +z). It is
 - scaled to 0.70 m high, its base on the pedestal's top (y = 0.5 m), its bounding box centred
   on the pedestal (x = 0, z = -1.0 m);
 - written as OBJ with 4 decimals (0.1 mm).
-Then it prints the red spot's design, computed from the converted mesh and the pedestal: the
-aim (the statue's bounding-box centre) and the widest cone (in 0.5 degree steps) all of whose
-rays, from the spot at (1.5, 1.7, 0), hit the statue first.
+statue-mesh.sh then runs spot_design.py, which designs the red spot from the written mesh.
 """
-import math
 import sys
 
 import fast_simplification
@@ -22,8 +19,6 @@ HEIGHT = 0.70
 BASE_Y = 0.5
 CENTRE_XZ = (0.0, -1.0)
 TRIANGLES = 4000
-SPOT = np.array([1.5, 1.7, 0.0])
-PEDESTAL = (np.array([-0.4, 0.0, -1.35]), np.array([0.4, 0.5, -0.65]))
 
 
 def read_off(path):
@@ -57,55 +52,6 @@ def place(v):
     return out
 
 
-def hits(o, d, tri):
-    """Möller-Trumbore against every triangle: the nearest t, or inf."""
-    v0, v1, v2 = tri[:, 0], tri[:, 1], tri[:, 2]
-    e1, e2 = v1 - v0, v2 - v0
-    p = np.cross(d, e2)
-    det = (e1 * p).sum(1)
-    ok = np.abs(det) > 1e-12
-    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
-    s = o - v0
-    u = (s * p).sum(1) * inv
-    q = np.cross(s, e1)
-    w = (q * d).sum(1) * inv
-    t = (e2 * q).sum(1) * inv
-    good = ok & (u >= 0) & (w >= 0) & (u + w <= 1) & (t > 1e-6)
-    return t[good].min() if good.any() else math.inf
-
-
-def box_t(o, d, lo, hi):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t1, t2 = (lo - o) / d, (hi - o) / d
-    tn, tf = np.nanmax(np.minimum(t1, t2)), np.nanmin(np.maximum(t1, t2))
-    return tn if tf >= max(tn, 0) and tn > 0 else math.inf
-
-
-def spot_design(v, f):
-    tri = v[f]
-    lo, hi = v.min(axis=0), v.max(axis=0)
-    aim = (lo + hi) / 2
-    axis = (aim - SPOT) / np.linalg.norm(aim - SPOT)
-    a = np.cross(axis, [0.0, 1.0, 0.0])
-    a /= np.linalg.norm(a)
-    b = np.cross(axis, a)
-    fit = 0.0
-    for k in range(1, 61):
-        th = math.radians(0.5 * k)
-        ring_ok = True
-        for j in range(72):
-            ph = 2 * math.pi * j / 72
-            d = math.cos(th) * axis + math.sin(th) * (math.cos(ph) * a + math.sin(ph) * b)
-            ts = hits(SPOT, d, tri)
-            if not (ts < box_t(SPOT, d, *PEDESTAL) and ts < math.inf):
-                ring_ok = False
-                break
-        if not ring_ok:
-            break
-        fit = 0.5 * k
-    return aim, fit, np.linalg.norm(aim - SPOT)
-
-
 def main():
     src, dst = sys.argv[1], sys.argv[2]
     v, f = read_off(src)
@@ -127,11 +73,6 @@ def main():
             o.write("f {} {} {}\n".format(*(t + 1)))
     lo, hi = vs.min(axis=0), vs.max(axis=0)
     print(f"{dst}: {len(vs)} vertices, {len(fs)} triangles, box {lo.round(4)} .. {hi.round(4)}")
-    # The spot's design from the mesh as written (rounded coordinates).
-    vr = np.round(vs, 4)
-    aim, fit, dist = spot_design(vr, fs)
-    print(f"spot aim (bounding-box centre) {aim.round(4)}, {dist:.3f} m from the spot")
-    print(f"widest cone whose every ray hits the statue first: half-angle {fit} deg")
 
 
 if __name__ == "__main__":

@@ -10,6 +10,8 @@ mod case3;
 mod case4;
 mod case5;
 mod case6;
+#[cfg(test)]
+mod design;
 mod spot;
 
 use super::measure::{

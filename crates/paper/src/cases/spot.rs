@@ -2,7 +2,7 @@
 //! pixels it reaches ("the spotlight only lights the only white object", "the white statue is
 //! partially lit", [GRC13] §4.1, §5.2).
 use eyeadapt_scene::{Light, Scene};
-use eyeadapt_tracer::{Frame, SceneData, View};
+use eyeadapt_tracer::{Frame, RayScratch, SceneData, View};
 use glam::{Vec3, Vec3A};
 
 /// The scene's (first) spot light.
@@ -92,8 +92,7 @@ pub(super) fn power_share(data: &SceneData, spot: &Spot, material: u32) -> f64 {
 }
 
 /// Of `pixels` (indices into `img`), those whose first-hit point (the depth AOV along the
-/// pixel's centre ray) the spot lights directly: inside its cone, and the first thing the
-/// spot's ray towards it meets (within 1 cm).
+/// pixel's centre ray) the spot lights directly ([`lights`]).
 pub(super) fn lit(
     data: &SceneData,
     spot: &Spot,
@@ -102,7 +101,6 @@ pub(super) fn lit(
     pixels: &[usize],
 ) -> Vec<usize> {
     let basis = view.basis();
-    let cos_cone = spot.cone_deg.to_radians().cos();
     let mut scratch = data.geometry.scratch();
     pixels
         .iter()
@@ -111,16 +109,22 @@ pub(super) fn lit(
             let (x, y) = (i % img.width, i / img.width);
             let d = view.ray_dir(basis, x as f32 + 0.5, y as f32 + 0.5);
             let p = view.position + Vec3::from(d) * img.depth[i];
-            let to = p - spot.position;
-            let dist = to.length();
-            let dir = to / dist;
-            if dir.dot(spot.axis) < cos_cone {
-                return false;
-            }
-            let o = Vec3A::from(spot.position);
-            data.geometry
-                .intersect_with(&mut scratch, o, Vec3A::from(dir), f32::INFINITY)
-                .is_some_and(|h| h.t >= dist - 0.01)
+            lights(data, &mut scratch, spot, p)
         })
         .collect()
+}
+
+/// Does the spot light point `p` directly: inside its cone, and the first thing the spot's
+/// ray towards it meets (within 1 cm)?
+pub(super) fn lights(data: &SceneData, scratch: &mut RayScratch, spot: &Spot, p: Vec3) -> bool {
+    let to = p - spot.position;
+    let dist = to.length();
+    let dir = to / dist;
+    if dir.dot(spot.axis) < spot.cone_deg.to_radians().cos() {
+        return false;
+    }
+    let o = Vec3A::from(spot.position);
+    data.geometry
+        .intersect_with(scratch, o, Vec3A::from(dir), f32::INFINITY)
+        .is_some_and(|h| h.t >= dist - 0.01)
 }
