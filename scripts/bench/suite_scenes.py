@@ -18,6 +18,9 @@ parameters by bench_xml.patch), with the max depth both get.
   three-rooms  builtin:three-rooms for eyeadapt, its conversion for Mitsuba (max_depth 8)
   1M triangles make_big_mesh.py's displaced sphere in a room (1 046 528 triangles, PLY), the
                same XML for both; generated into the cache directory
+  many lights  make_many_lights.py's nine rooms lit by 27 ceiling lamps (eyeadapt's light tree;
+               Mitsuba chooses lamps by its default rule), TOML for eyeadapt, its conversion for
+               Mitsuba; generated into the cache directory
 """
 import hashlib
 import os
@@ -90,6 +93,12 @@ def prepare(data_dir, work, python):
     big_xml = os.path.join(big_dir, "big-mesh.xml")
     if not os.path.exists(big_xml):
         subprocess.run([python, gen, big_dir], check=True)
+    many_gen = os.path.join(HERE, "make_many_lights.py")
+    many_toml = os.path.join(work, "many-lights-" + sha_of(many_gen) + ".toml")
+    many_xml = many_toml[:-len(".toml")] + ".xml"
+    if not os.path.exists(many_toml):
+        subprocess.run([python, many_gen, many_toml], check=True)
+    write_if_changed(many_xml, toml_to_mitsuba.convert(many_toml)[0])
     return [
         BenchScene("cbox", cbox, cbox, 6, cbox_inputs, "mitsuba-data cbox-rgb.xml"),
         BenchScene("matpreview", mat, mat, -1, mat_inputs, "mitsuba-data matpreview.xml"),
@@ -99,4 +108,6 @@ def prepare(data_dir, work, python):
                    [builtin_toml("three-rooms"), rooms_xml], "builtin:three-rooms"),
         BenchScene("1M triangles", big_xml, big_xml, 8,
                    [big_xml, os.path.join(big_dir, "big-mesh.ply")], "make_big_mesh.py, 1 046 528 triangles"),
+        BenchScene("many lights", many_toml, many_xml, 8, [many_toml, many_xml],
+                   "make_many_lights.py, 9 rooms, 27 lamps"),
     ]
