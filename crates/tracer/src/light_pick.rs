@@ -322,7 +322,7 @@ impl Tree {
         let root = if self.unit.len() == 1 {
             importance(&bounds[self.unit[0] as usize], x, n)
         } else {
-            self.tree.root().importance(x, n)
+            self.tree.root_importance(x, n)
         };
         let rest: f32 = self
             .unbounded

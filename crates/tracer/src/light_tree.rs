@@ -63,31 +63,55 @@ impl LightBounds {
     fn centre(&self) -> Vec3A {
         0.5 * (self.lo + self.hi)
     }
+}
+
+/// What a node's importance reads, precomputed per node: the box's bounding sphere (centre,
+/// radius) instead of its corners, and the spread's sine.
+#[derive(Clone, Copy, Debug)]
+struct Cone {
+    centre: Vec3A,
+    radius: f32,
+    axis: Vec3A,
+    cos_o: f32,
+    sin_o: f32,
+    cos_e: f32,
+    phi: f32,
+}
+
+impl Cone {
+    fn of(b: &LightBounds) -> Cone {
+        Cone {
+            centre: b.centre(),
+            radius: 0.5 * (b.hi - b.lo).length(),
+            axis: b.axis,
+            cos_o: b.cos_o,
+            sin_o: sin_of(b.cos_o),
+            cos_e: b.cos_e,
+            phi: b.phi,
+        }
+    }
 
     /// Conservative irradiance estimate at `x` (normal `n`; none for a point that looks in
     /// every direction). 0 only where nothing inside can reach `x`.
-    pub fn importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
-        let c = self.centre();
-        let r2 = 0.25 * (self.hi - self.lo).length_squared();
-        let to_x = x - c;
+    #[inline]
+    fn importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        let to_x = x - self.centre;
         let d2 = to_x.length_squared();
-        // The cone of directions from x that meets the box's bounding sphere: cos and sin of
-        // its half-angle θ_b (everything when x is inside).
-        let (sin_b, cos_b) = if d2 <= r2 || d2 <= 0.0 {
-            (0.0, -1.0)
-        } else {
-            let s2 = r2 / d2;
-            (s2.sqrt(), (1.0 - s2).max(0.0).sqrt())
-        };
-        let inside = cos_b < 0.0;
-        let dist = d2.sqrt();
-        let w = if dist > 0.0 { to_x / dist } else { self.axis };
+        let r2 = self.radius * self.radius;
+        if d2 <= r2 || d2 <= 0.0 {
+            // x inside the bounding sphere: every direction and cosine is possible.
+            return self.phi / r2.max(1e-12);
+        }
+        let inv_d = 1.0 / d2.sqrt();
+        // The cone of directions from x that meets the bounding sphere: half-angle θ_b.
+        let sin_b = (self.radius * inv_d).min(1.0);
+        let cos_b = (1.0 - sin_b * sin_b).max(0.0).sqrt();
         // Emitter side: angle from the cone's axis to x, less the spread, less θ_b.
-        let cos_p = if inside || self.cos_o <= -1.0 {
+        let cos_p = if self.cos_o <= -1.0 {
             1.0
         } else {
-            let cos_w = self.axis.dot(w).clamp(-1.0, 1.0);
-            let (sin_x, cos_x) = sub_angle(sin_of(cos_w), cos_w, sin_of(self.cos_o), self.cos_o);
+            let cos_w = (self.axis.dot(to_x) * inv_d).clamp(-1.0, 1.0);
+            let (sin_x, cos_x) = sub_angle(sin_of(cos_w), cos_w, self.sin_o, self.cos_o);
             sub_angle(sin_x, cos_x, sin_b, cos_b).1
         };
         if cos_p < self.cos_e - SLACK {
@@ -95,15 +119,15 @@ impl LightBounds {
         }
         // Receiver side: the largest cosine between n and a direction into the sphere.
         let cos_r = match n {
-            Some(n) if !inside => {
-                let cos_i = (-n.dot(w)).clamp(-1.0, 1.0);
+            Some(n) => {
+                let cos_i = (-n.dot(to_x) * inv_d).clamp(-1.0, 1.0);
                 let c = sub_angle(sin_of(cos_i), cos_i, sin_b, cos_b).1;
                 if c < -SLACK {
                     return 0.0;
                 }
                 c
             }
-            _ => 1.0,
+            None => 1.0,
         };
         // Floors keep a node that can contribute choosable when rounding takes a cosine to 0.
         self.phi * cos_p.max(1e-3) * cos_r.max(1e-3) / d2.max(r2).max(1e-12)
@@ -157,6 +181,7 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: LightBounds,
+    cone: Cone,
     /// A leaf's light (an index into the caller's list), or u32::MAX for an inner node.
     light: u32,
     /// An inner node's second child (its first follows it).
@@ -198,6 +223,7 @@ impl LightTree {
             self.trails[k as usize] = (trail, depth as u8);
             self.nodes.push(Node {
                 bounds: lights[k as usize],
+                cone: Cone::of(&lights[k as usize]),
                 light: k,
                 right: u32::MAX,
             });
@@ -228,6 +254,7 @@ impl LightTree {
         });
         self.nodes.push(Node {
             bounds: lights[ids[0] as usize],
+            cone: Cone::of(&lights[ids[0] as usize]),
             light: u32::MAX,
             right: 0,
         });
@@ -239,13 +266,14 @@ impl LightTree {
             .bounds
             .union(&self.nodes[right as usize].bounds);
         self.nodes[at as usize].bounds = bounds;
+        self.nodes[at as usize].cone = Cone::of(&bounds);
         self.nodes[at as usize].right = right;
         at
     }
 
-    /// The root's bounds (all the lights).
-    pub fn root(&self) -> &LightBounds {
-        &self.nodes[0].bounds
+    /// The root's importance at (`x`, `n`) (all the lights' bounds together).
+    pub fn root_importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        self.nodes[0].cone.importance(x, n)
     }
 
     /// Importance of node `i` at (`x`, `n`): a leaf's from `leaf(light)`, the light's own.
@@ -261,7 +289,7 @@ impl LightTree {
         if node.light != u32::MAX {
             leaf(node.light as usize)
         } else {
-            node.bounds.importance(x, n)
+            node.cone.importance(x, n)
         }
     }
 
