@@ -111,10 +111,13 @@ pub enum Bsdf {
         specular_reflectance: Param<Rgb>,
     },
     /// Microfacet dielectric coating (`ior`) over a Lambertian base (`reflectance`), after
-    /// Mitsuba's `roughplastic` with `nonlinear = false`.
+    /// Mitsuba's `roughplastic` with `nonlinear = false`, or its smooth `plastic` when
+    /// `alpha` is a constant 0.
     Plastic {
         reflectance: Param<Rgb>,
-        /// Clamped to at least 0.01 where it is evaluated.
+        /// Clamped to at least 0.01 where it is evaluated. A constant 0 is a smooth coating:
+        /// its transmittance and internal reflectance are the smooth interface's (Mitsuba's
+        /// `plastic`), its specular lobe is GGX alpha 0.01.
         alpha: Param<f32>,
         distribution: Distribution,
         ior: f32,

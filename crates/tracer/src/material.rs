@@ -171,12 +171,15 @@ impl Entry {
                 distribution,
                 ior,
             } => {
+                // A constant 0 is a smooth coating: the smooth interface's terms, though its
+                // specular lobe is evaluated at alpha 0.01.
                 let a = match *alpha {
-                    Param::Const(a) => a,
-                    Param::Texture(t) => texture::param_mean(Param::Texture(t), textures),
+                    Param::Const(a) if a <= 0.0 => 0.0,
+                    Param::Const(a) => a.max(0.01),
+                    Param::Texture(t) => texture::param_mean(Param::Texture(t), textures).max(0.01),
                 };
                 Some((
-                    PlasticTable::get(a.max(0.01), *distribution, *ior),
+                    PlasticTable::get(a, *distribution, *ior),
                     texture::param_mean(*reflectance, textures),
                 ))
             }

@@ -352,15 +352,26 @@ impl<'t> Builder<'t> {
                 format!("{}: nonlinear = true is ignored (eyeadapt's plastic is Mitsuba's linear model)", o.describe()),
             );
         }
-        if alpha.constant().is_some_and(|a| a < 0.01) {
+        let smooth = o.kind == "plastic";
+        if smooth {
             self.warning(
                 o.at,
-                format!("{}: a smooth coating is approximated by GGX alpha 0.01 (eyeadapt's plastic is always a microfacet coating)", o.describe()),
+                format!("{}: the smooth coating's reflection is approximated by GGX alpha 0.01 (its transmittance and internal reflectance are the smooth interface's)", o.describe()),
+            );
+        } else if alpha.constant().is_some_and(|a| a < 0.01) {
+            self.warning(
+                o.at,
+                format!(
+                    "{}: alpha below 0.01 is approximated by GGX alpha 0.01",
+                    o.describe()
+                ),
             );
         }
         Bsdf::Plastic {
             reflectance,
+            // A constant 0 marks the smooth `plastic` (see `Bsdf::Plastic`).
             alpha: match alpha {
+                Param::Const(_) if smooth => Param::Const(0.0),
                 Param::Const(a) => Param::Const(a.max(0.01)),
                 t => t,
             },
