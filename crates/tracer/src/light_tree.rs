@@ -196,7 +196,7 @@ pub struct LightTree {
     trails: Vec<(u64, u8)>,
 }
 
-/// Longest path kept; a median split of 2^40 lights would need 40.
+/// Bits of a trail.
 const MAX_DEPTH: usize = 64;
 
 impl LightTree {
@@ -217,8 +217,10 @@ impl LightTree {
     /// Builds the subtree over `ids` (depth `depth`, path `trail`); returns its root's index.
     fn split(&mut self, lights: &[LightBounds], ids: &mut [u32], depth: usize, trail: u64) -> u32 {
         let at = self.nodes.len() as u32;
-        if ids.len() == 1 || depth + 1 >= MAX_DEPTH {
-            // (At MAX_DEPTH the rest would share a leaf: unreachable for any real light count.)
+        // A median split halves the count at every level, so a path is at most
+        // ⌈log₂ n⌉ + 1 < 64 steps long and fits the trail's bits.
+        debug_assert!(depth < MAX_DEPTH);
+        if ids.len() == 1 {
             let k = ids[0];
             self.trails[k as usize] = (trail, depth as u8);
             self.nodes.push(Node {
