@@ -155,6 +155,7 @@ impl Job {
                 frame: 0,
                 filter: self.scene.render.filter.unwrap_or_default(),
                 wcam_specular: renderer_specular(self.estimator_config.wcam.specular),
+                guiding: Default::default(),
             },
             estimators: &self.estimators,
             config: &self.estimator_config,

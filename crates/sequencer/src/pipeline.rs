@@ -56,6 +56,7 @@ impl Sampling {
             frame: 0,
             filter: scene.render.filter.unwrap_or_default(),
             wcam_specular: Default::default(),
+            guiding: Default::default(),
         }
     }
 }

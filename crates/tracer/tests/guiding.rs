@@ -32,7 +32,10 @@ fn builtin_view(name: &str, w: u32, h: u32) -> (SceneData, View) {
 #[test]
 fn guiding_off_keeps_the_bits_of_the_renderer_before_guiding() {
     // The hashes were taken at c0287d6, before `guiding/` existed.
-    for (name, expected) in [("interior", 0x2eeccc3f0ccd8f02), ("three-rooms", 0x9629a96366653ff)] {
+    for (name, expected) in [
+        ("interior", 0x2eeccc3f0ccd8f02),
+        ("three-rooms", 0x9629a96366653ff),
+    ] {
         let (data, view) = builtin_view(name, 24, 14);
         let f = render(&data, &view, &common::settings(8, 3, 8));
         assert_eq!(frame_hash(&f), expected, "{name}");
