@@ -303,16 +303,6 @@ impl<'g> PathState<'g> {
         })
     }
 
-    /// Notes emitted radiance `le` reached by the current segment, of which the share `w`
-    /// counted, for the training records.
-    #[inline]
-    fn record_emitter(&mut self, le: impl FnOnce() -> Vec3A, w: f32) {
-        if let Some(r) = &mut self.recorder {
-            let full = self.beta * le();
-            r.emitter(full, full * w);
-        }
-    }
-
     /// The factor that turns light reaching the camera through the AOV vertex `v` (its BSDF
     /// value `f` towards local direction `wi_l`, `g` its bump shadowing there) into the WCAM
     /// re-render's contribution, in the path's specular mode.
@@ -348,8 +338,6 @@ impl<'g> PathState<'g> {
             }
         };
         let c = self.beta * env.radiance(self.d) * w;
-        let d = self.d;
-        self.record_emitter(|| env.radiance(d), w);
         if self.specular_chain {
             self.out.l += c;
         } else {
@@ -379,7 +367,6 @@ impl<'g> PathState<'g> {
             ),
         };
         let c = self.beta * scene.materials.emission_at(si) * w;
-        self.record_emitter(|| scene.materials.emission_at(si), w);
         if self.specular_chain {
             self.out.l += c;
             self.out.emitter = true;
@@ -528,11 +515,10 @@ impl<'g> PathState<'g> {
             self.ke = irradiance_ratio(bs.f);
         }
         self.beta *= bs.weight;
-        if let Some(r) = &mut self.recorder {
-            match g {
-                Some(g) if !bs.delta => r.push(g.leaf, wi, bs.pdf, self.beta, self.out.l),
-                _ => r.close(),
-            }
+        if let (Some(r), Some(g)) = (&mut self.recorder, g)
+            && !bs.delta
+        {
+            r.push(g.leaf, wi, bs.pdf, self.beta, self.out.l);
         }
         self.u_light = u.light_next;
         self.prev = if bs.delta {

@@ -234,6 +234,77 @@ mod tests {
         }
     }
 
+    /// A tree learned from a lopsided energy: quadtrees refined twice from values that fall
+    /// mostly into one corner of the square and along one edge.
+    pub(crate) fn lopsided() -> DTree {
+        let mut t = DTree::new();
+        let mut h = 12345u64;
+        let mut next = || {
+            h = crate::sampler::mix64(h);
+            (h >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for _ in 0..3 {
+            for _ in 0..20000 {
+                let (a, b) = (next(), next());
+                let p = if a < 0.6 {
+                    [0.1 * b, 0.05 + 0.1 * a]
+                } else {
+                    [b, 0.95 * a]
+                };
+                t.add(t.slot(p), (1.0 + 4.0 * b) as f64);
+            }
+            t.sum_up();
+            t = t.refined(0.01);
+        }
+        for _ in 0..20000 {
+            let (a, b) = (next(), next());
+            let p = if a < 0.6 {
+                [0.1 * b, 0.05 + 0.1 * a]
+            } else {
+                [b, 0.95 * a]
+            };
+            t.add(t.slot(p), 1.0);
+        }
+        t.sum_up();
+        t
+    }
+
+    #[test]
+    fn the_density_integrates_to_one_and_samples_follow_it() {
+        let t = lopsided();
+        assert!(t.node_count() > 20, "{} nodes", t.node_count());
+        // ∫ pdf over the square, on a fine grid (finer than the deepest leaf needs not be:
+        // a midpoint rule over a 512² grid is exact for leaves down to 1/512).
+        let n = 512;
+        let mut integral = 0.0f64;
+        let mut expected = vec![0.0f64; 16 * 16];
+        for i in 0..n {
+            for j in 0..n {
+                let p = [(i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32];
+                let v = t.pdf(p) as f64 / (n * n) as f64;
+                integral += v;
+                expected[(i * 16 / n) * 16 + j * 16 / n] += v;
+            }
+        }
+        assert!((integral - 1.0).abs() < 2e-3, "∫ pdf = {integral}");
+        // Samples land in each of 16 × 16 cells as often as the pdf says (χ², 255 dof).
+        let m = 200_000;
+        let mut seen = vec![0.0f64; 16 * 16];
+        for k in 0..m {
+            let u = crate::sampler::SampleStream::new(7, k).next_2d();
+            let p = t.sample(u);
+            assert!(t.pdf(p) > 0.0, "sampled {p:?} where the pdf is 0");
+            seen[(p[0] * 16.0) as usize * 16 + (p[1] * 16.0) as usize] += 1.0;
+        }
+        let chi2: f64 = seen
+            .iter()
+            .zip(&expected)
+            .filter(|(_, e)| **e * m as f64 > 5.0)
+            .map(|(o, e)| (o - e * m as f64).powi(2) / (e * m as f64))
+            .sum();
+        assert!(chi2 < 400.0, "χ² = {chi2}");
+    }
+
     #[test]
     fn a_tree_without_energy_has_no_density() {
         let t = DTree::new();

@@ -10,8 +10,10 @@ use crate::bsdf::{Bsdf, BsdfSample};
 use crate::integrator::Frame;
 use glam::Vec3A;
 
-/// α: the share of guided vertices' directions drawn from the guide.
-pub const GUIDE_FRACTION: f32 = 0.5;
+/// α: the share of guided vertices' directions drawn from the guide. Müller et al. use 0.5;
+/// 0.3 measured better on both scenes of `docs/benchmarks/guiding.md`, whose guides, learned
+/// from a few thousand records per leaf, are noisier than theirs.
+pub const GUIDE_FRACTION: f32 = 0.3;
 
 /// Roughest GGX/Beckmann α below which a conductor is left to its own sampling (a narrow
 /// lobe is sampled better by the BSDF than by any quadtree).

@@ -4,9 +4,13 @@
 //! it was chosen with, its throughput after the vertex and the radiance the path had gathered
 //! so far. Everything the path gathers later arrived along that direction, so when the path
 //! ends, (gathered since − gathered before) / throughput is a one-sample estimate of the
-//! incident radiance Lᵢ there. The emitter the next segment reaches counts in full (not with
-//! its MIS weight): the light sample at the vertex itself went elsewhere. The record's value
-//! is Y(Lᵢ) / pdf, so that a quadrant's summed values estimate ∫ Y(Lᵢ) dω over it.
+//! incident radiance Lᵢ there. The record's value is Y(Lᵢ) / pdf, so that a quadrant's summed
+//! values estimate ∫ Y(Lᵢ) dω over it.
+//!
+//! **MIS-weighted:** an emitter the next segment reaches counts with its MIS weight, as it
+//! does in the image, not in full. The guide thus learns the light that direction sampling has
+//! to find, and not the small lamps that the light samples already find well: learning those
+//! in full sent guided directions after them and measured worse (`docs/benchmarks/guiding.md`).
 use super::dtree::to_square;
 use super::stree::SdTree;
 use crate::emitter::luminance;
@@ -23,8 +27,6 @@ struct Pending {
     pdf: f32,
     beta: Vec3A,
     before: Vec3A,
-    /// Emission reached by the next segment beyond its MIS-weighted share.
-    extra: Vec3A,
 }
 
 /// A finished record: a leaf of the spatial tree, the leaf quadrant (its `slot`) of that
@@ -41,8 +43,6 @@ pub struct Record {
 pub struct Recorder {
     pending: [Pending; MAX_VERTICES],
     len: usize,
-    /// The path's last scattering vertex made the latest record.
-    open: bool,
 }
 
 impl Recorder {
@@ -50,33 +50,15 @@ impl Recorder {
     /// density `pdf`, with throughput `beta` afterwards, having gathered `gathered` so far.
     #[inline]
     pub fn push(&mut self, leaf: u32, wi: Vec3A, pdf: f32, beta: Vec3A, gathered: Vec3A) {
-        self.open = self.len < MAX_VERTICES;
-        if self.open {
+        if self.len < MAX_VERTICES {
             self.pending[self.len] = Pending {
                 leaf,
                 wi,
                 pdf,
                 beta,
                 before: gathered,
-                extra: Vec3A::ZERO,
             };
             self.len += 1;
-        }
-    }
-
-    /// The path scattered at a vertex that made no record: emission reached next belongs to
-    /// that vertex's light sample, not to the latest record's.
-    #[inline]
-    pub fn close(&mut self) {
-        self.open = false;
-    }
-
-    /// The segment after the latest record reached emission `full`, of which `weighted` (its
-    /// MIS share) went into the path's radiance.
-    #[inline]
-    pub fn emitter(&mut self, full: Vec3A, weighted: Vec3A) {
-        if self.open {
-            self.pending[self.len - 1].extra += full - weighted;
         }
     }
 
@@ -84,7 +66,7 @@ impl Recorder {
     /// leaf's quadrant found in `tree`'s quadtrees being filled.
     pub fn finish(&self, gathered: Vec3A, tree: &SdTree, out: &mut Vec<Record>) {
         for r in &self.pending[..self.len] {
-            let li = gathered - r.before + r.extra;
+            let li = gathered - r.before;
             let inv = |b: f32| if b > 0.0 { 1.0 / b } else { 0.0 };
             let li = li * Vec3A::new(inv(r.beta.x), inv(r.beta.y), inv(r.beta.z));
             let mut value = luminance(li) / r.pdf;
