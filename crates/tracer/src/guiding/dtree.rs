@@ -197,8 +197,8 @@ impl DTree {
         // (node in `out`, this tree's node there or None, its quadrant energies, depth)
         let mut stack = vec![(0usize, Some(0usize), self.nodes[0].sum, 1u32)];
         while let Some((at, old, sums, depth)) = stack.pop() {
-            for q in 0..4 {
-                if depth >= MAX_DEPTH || sums[q] <= total * threshold {
+            for (q, &energy) in sums.iter().enumerate() {
+                if depth >= MAX_DEPTH || energy <= total * threshold {
                     continue;
                 }
                 let c = out.nodes.len();
@@ -209,7 +209,7 @@ impl DTree {
                     .filter(|&k| k != 0);
                 let child_sums = match old_child {
                     Some(k) => self.nodes[k].sum,
-                    None => [sums[q] * 0.25; 4],
+                    None => [energy * 0.25; 4],
                 };
                 stack.push((c, old_child, child_sums, depth + 1));
             }
