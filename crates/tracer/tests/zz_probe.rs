@@ -81,7 +81,14 @@ fn probe() {
         .map(|v| v.parse().unwrap())
         .collect();
     for spp in spps {
-        for g in [Guiding::Off, Guiding::On] {
+        let gs: Vec<Guiding> = if std::env::var("ONLY_ON").is_ok() {
+            vec![Guiding::On]
+        } else if std::env::var("ONLY_OFF").is_ok() {
+            vec![Guiding::Off]
+        } else {
+            vec![Guiding::Off, Guiding::On]
+        };
+        for g in gs {
             let mut s = common::settings(spp, 1, 8);
             s.guiding = g;
             let c0 = cpu();

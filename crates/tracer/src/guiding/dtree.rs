@@ -19,6 +19,9 @@ struct Node {
     child: [u32; 4],
     /// Energy in each quadrant.
     sum: [f64; 4],
+    /// Each quadrant's density relative to the node's, 4 · sum[q] / Σ sum (set by
+    /// [`DTree::sum_up`]; what sampling and [`DTree::pdf`] read).
+    density: [f32; 4],
 }
 
 /// A directional quadtree (see the module docs).
@@ -110,7 +113,8 @@ impl DTree {
         self.nodes[slot as usize / 4].sum[slot as usize % 4] += value;
     }
 
-    /// Sets every refined quadrant's energy to the total of the node below it.
+    /// Sets every refined quadrant's energy to the total of the node below it, and the
+    /// quadrants' relative densities.
     pub fn sum_up(&mut self) {
         // Children come after their parents: one backward sweep sees each child's total first.
         for n in (0..self.nodes.len()).rev() {
@@ -120,6 +124,13 @@ impl DTree {
                     self.nodes[n].sum[q] = self.nodes[c].sum.iter().sum();
                 }
             }
+            let node = &mut self.nodes[n];
+            let total: f64 = node.sum.iter().sum();
+            node.density = if total > 0.0 {
+                node.sum.map(|s| (4.0 * s / total) as f32)
+            } else {
+                [0.0; 4]
+            };
         }
     }
 
@@ -128,18 +139,14 @@ impl DTree {
     #[inline]
     pub fn pdf(&self, mut p: [f32; 2]) -> f32 {
         let mut n = 0usize;
-        let mut f = 1.0f64;
+        let mut f = 1.0f32;
         loop {
             let node = &self.nodes[n];
-            let total: f64 = node.sum.iter().sum();
-            if total <= 0.0 {
-                return 0.0;
-            }
             let (q, local) = descend(p);
-            f *= 4.0 * node.sum[q] / total;
+            f *= node.density[q];
             let c = node.child[q];
             if c == 0 || f == 0.0 {
-                return f as f32;
+                return f;
             }
             n = c as usize;
             p = local;
@@ -153,15 +160,16 @@ impl DTree {
     }
 
     /// A point of the unit square drawn with density [`DTree::pdf`] from `u` (the tree must
-    /// hold energy). Each level picks the column with `u[0]` and the row within it with `u[1]`,
-    /// rescaling each, so the leftover bits place the point inside the leaf.
-    pub fn sample(&self, mut u: [f32; 2]) -> [f32; 2] {
+    /// hold energy), and that density. Each level picks the column with `u[0]` and the row
+    /// within it with `u[1]`, rescaling each, so the leftover bits place the point inside the
+    /// leaf.
+    pub fn sample(&self, mut u: [f32; 2]) -> ([f32; 2], f32) {
         let mut n = 0usize;
-        let (mut origin, mut size) = ([0.0f32; 2], 1.0f32);
+        let (mut origin, mut size, mut f) = ([0.0f32; 2], 1.0f32, 1.0f32);
         loop {
-            let s = self.nodes[n].sum;
-            let pick = |u: &mut f32, a: f64, b: f64| -> usize {
-                let pa = (a / (a + b)) as f32;
+            let s = self.nodes[n].density;
+            let pick = |u: &mut f32, a: f32, b: f32| -> usize {
+                let pa = a / (a + b);
                 if *u < pa {
                     *u = (*u / pa).min(1.0 - f32::EPSILON * 0.5);
                     0
@@ -173,12 +181,13 @@ impl DTree {
             let qx = pick(&mut u[0], s[0] + s[2], s[1] + s[3]);
             let qy = pick(&mut u[1], s[qx], s[qx + 2]);
             let q = qx | qy << 1;
+            f *= s[q];
             size *= 0.5;
             origin[0] += size * qx as f32;
             origin[1] += size * qy as f32;
             let c = self.nodes[n].child[q];
             if c == 0 {
-                return [origin[0] + size * u[0], origin[1] + size * u[1]];
+                return ([origin[0] + size * u[0], origin[1] + size * u[1]], f);
             }
             n = c as usize;
         }
@@ -292,8 +301,9 @@ mod tests {
         let mut seen = vec![0.0f64; 16 * 16];
         for k in 0..m {
             let u = crate::sampler::SampleStream::new(7, k).next_2d();
-            let p = t.sample(u);
+            let (p, pdf) = t.sample(u);
             assert!(t.pdf(p) > 0.0, "sampled {p:?} where the pdf is 0");
+            assert!((pdf - t.pdf(p)).abs() <= 1e-3 * pdf, "{pdf} ≠ {}", t.pdf(p));
             seen[(p[0] * 16.0) as usize * 16 + (p[1] * 16.0) as usize] += 1.0;
         }
         let chi2: f64 = seen

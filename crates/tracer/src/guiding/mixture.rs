@@ -54,9 +54,13 @@ pub fn sample_guided(
     u: [f32; 2],
 ) -> Option<BsdfSample> {
     let a = GUIDE_FRACTION;
-    let (wi_l, f, pdf_bsdf) = if u[0] < a {
-        let wi_l = frame.to_local(from_square(guide.sample([u[0] / a, u[1]])));
-        (wi_l, bsdf.eval(wo_l, wi_l), bsdf.pdf(wo_l, wi_l))
+    let (wi_l, f, pdf) = if u[0] < a {
+        // The guide's density from its own sampling (what `mixture_pdf` finds again).
+        let (p, pdf_square) = guide.sample([u[0] / a, u[1]]);
+        let wi_l = frame.to_local(from_square(p));
+        let pdf_guide = pdf_square * (0.25 / std::f32::consts::PI);
+        let pdf = a * pdf_guide + (1.0 - a) * bsdf.pdf(wo_l, wi_l);
+        (wi_l, bsdf.eval(wo_l, wi_l), pdf)
     } else {
         let v = ((u[0] - a) / (1.0 - a)).min(1.0 - f32::EPSILON * 0.5);
         let b = bsdf.sample(wo_l, u_lobe, [v, u[1]])?;
@@ -68,8 +72,7 @@ pub fn sample_guided(
                 ..b
             });
         }
-        (b.wi, b.f, b.pdf)
+        (b.wi, b.f, mixture_pdf(guide, frame, b.wi, b.pdf))
     };
-    let pdf = mixture_pdf(guide, frame, wi_l, pdf_bsdf);
     BsdfSample::of_lobe(wi_l, pdf, || f)
 }
