@@ -11,6 +11,17 @@
 //! samples with equal weight. Nothing is shared between frames: a frame renders the same on
 //! any machine of a farm, whatever else that machine rendered.
 //!
+//! **Where it applies:** at vertices whose BSDF has no delta part and is not a narrow lobe
+//! (`mixture::guidable`), opaque and not a pane; the eye sensor (`eye.rs`) is not guided, so
+//! its estimates and noise floor are those of the unguided renderer, bit for bit. Off (the
+//! default), a frame is bit-identical to what the renderer gave before guiding existed
+//! (`tests/guiding.rs` pins it).
+//!
+//! **Cost:** a guided vertex looks its leaf up, evaluates the quadtree's density for the light
+//! sample's MIS weight and for the sampled direction, and, while learning, records; on the
+//! built-in scenes, whose few thousand triangles make a vertex cheap, that is +15–120 % CPU
+//! per sample (`docs/benchmarks/guiding.md`).
+//!
 //! **Determinism:** the records of a pass are kept per row and added to the tree in row order
 //! after the rows are done, so the learned tree, and with it every pixel, is the same for any
 //! thread count.
