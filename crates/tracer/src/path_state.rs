@@ -299,7 +299,7 @@ impl<'g> PathState<'g> {
         let dist = &tree.leaves[leaf as usize].sampling;
         Some(GuideAt {
             leaf,
-            dist: (dist.total() > 0.0).then_some(dist),
+            dist: dist.has_energy().then_some(dist),
         })
     }
 

@@ -13,14 +13,13 @@ use std::f32::consts::PI;
 /// Deepest level a quadrant may be subdivided to (Müller's 20).
 pub const MAX_DEPTH: u32 = 20;
 
+/// What sampling and [`DTree::pdf`] read of a node: half a cache line.
 #[derive(Clone, Copy, Debug, Default)]
 struct Node {
     /// Index of the node that refines quadrant q, 0 where the quadrant is a leaf.
     child: [u32; 4],
-    /// Energy in each quadrant.
-    sum: [f64; 4],
     /// Each quadrant's density relative to the node's, 4 · sum[q] / Σ sum (set by
-    /// [`DTree::sum_up`]; what sampling and [`DTree::pdf`] read).
+    /// [`DTree::sum_up`]).
     density: [f32; 4],
 }
 
@@ -28,6 +27,9 @@ struct Node {
 #[derive(Clone, Debug)]
 pub struct DTree {
     nodes: Vec<Node>,
+    /// Energy in each quadrant of each node, apart from the nodes so that sampling's
+    /// descents touch less memory.
+    sums: Vec<[f64; 4]>,
 }
 
 impl Default for DTree {
@@ -78,13 +80,20 @@ impl DTree {
     pub fn new() -> DTree {
         DTree {
             nodes: vec![Node::default()],
+            sums: vec![[0.0; 4]],
         }
     }
 
     /// The total energy.
     #[inline]
     pub fn total(&self) -> f64 {
-        self.nodes[0].sum.iter().sum()
+        self.sums[0].iter().sum()
+    }
+
+    /// Whether the tree holds energy to sample from (as of [`DTree::sum_up`]).
+    #[inline]
+    pub fn has_energy(&self) -> bool {
+        self.nodes[0].density != [0.0; 4]
     }
 
     pub fn node_count(&self) -> usize {
@@ -110,7 +119,7 @@ impl DTree {
     /// the nodes above it up to date.
     #[inline]
     pub fn add(&mut self, slot: u32, value: f64) {
-        self.nodes[slot as usize / 4].sum[slot as usize % 4] += value;
+        self.sums[slot as usize / 4][slot as usize % 4] += value;
     }
 
     /// Sets every refined quadrant's energy to the total of the node below it, and the
@@ -121,13 +130,13 @@ impl DTree {
             for q in 0..4 {
                 let c = self.nodes[n].child[q] as usize;
                 if c != 0 {
-                    self.nodes[n].sum[q] = self.nodes[c].sum.iter().sum();
+                    self.sums[n][q] = self.sums[c].iter().sum();
                 }
             }
-            let node = &mut self.nodes[n];
-            let total: f64 = node.sum.iter().sum();
-            node.density = if total > 0.0 {
-                node.sum.map(|s| (4.0 * s / total) as f32)
+            let sums = self.sums[n];
+            let total: f64 = sums.iter().sum();
+            self.nodes[n].density = if total > 0.0 {
+                sums.map(|s| (4.0 * s / total) as f32)
             } else {
                 [0.0; 4]
             };
@@ -204,7 +213,7 @@ impl DTree {
             return out;
         }
         // (node in `out`, this tree's node there or None, its quadrant energies, depth)
-        let mut stack = vec![(0usize, Some(0usize), self.nodes[0].sum, 1u32)];
+        let mut stack = vec![(0usize, Some(0usize), self.sums[0], 1u32)];
         while let Some((at, old, sums, depth)) = stack.pop() {
             for (q, &energy) in sums.iter().enumerate() {
                 if depth >= MAX_DEPTH || energy <= total * threshold {
@@ -212,12 +221,13 @@ impl DTree {
                 }
                 let c = out.nodes.len();
                 out.nodes.push(Node::default());
+                out.sums.push([0.0; 4]);
                 out.nodes[at].child[q] = c as u32;
                 let old_child = old
                     .map(|o| self.nodes[o].child[q] as usize)
                     .filter(|&k| k != 0);
                 let child_sums = match old_child {
-                    Some(k) => self.nodes[k].sum,
+                    Some(k) => self.sums[k],
                     None => [energy * 0.25; 4],
                 };
                 stack.push((c, old_child, child_sums, depth + 1));
