@@ -131,6 +131,7 @@ pub fn check_accepted_scene(scene: &Scene, max_triangles: usize) {
         frame: 0,
         filter: scene.render.filter.unwrap_or_default(),
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     let f = render(&data, &view, &settings);
     assert_eq!(f.stats.samples, 12);

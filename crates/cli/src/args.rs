@@ -173,6 +173,10 @@ pub struct SamplingArgs {
     /// Random seed; the same seed gives the same bits.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Path guiding, learned per frame from the frame's own samples: `off` (the default) or
+    /// `on` (docs/benchmarks/guiding.md says where it pays).
+    #[arg(long, value_parser = ["off", "on"])]
+    pub guiding: Option<String>,
 }
 
 impl SamplingArgs {
@@ -184,6 +188,10 @@ impl SamplingArgs {
             max_depth: self.max_depth,
             rr_depth: self.rr_depth,
             seed: self.seed,
+            guiding: self.guiding.as_deref().map(|g| match g {
+                "on" => eyeadapt_tracer::Guiding::On,
+                _ => eyeadapt_tracer::Guiding::Off,
+            }),
         }
     }
 }

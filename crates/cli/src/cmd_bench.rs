@@ -36,6 +36,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
             frame: 0,
             filter: eyeadapt_scene::PixelFilter::Box,
             wcam_specular: Default::default(),
+            guiding: Default::default(),
         };
         let f = render(&data, &view, &s);
         samples = f.stats.samples;

@@ -227,6 +227,7 @@ mod tests {
             frame: 0,
             filter: eyeadapt_scene::PixelFilter::Box,
             wcam_specular: Default::default(),
+            guiding: Default::default(),
         };
         let f = eyeadapt_tracer::render(&data, &view, &s);
         let patch = Region::from_material(&scene, "white patch", "cc19", 0.2);

@@ -13,6 +13,7 @@
 //! max_depth = 8                     # Mitsuba's convention
 //! rr_depth = 5
 //! exposure = 0.0                    # preview PNG exposure in stops
+//! guiding = "off"                   # "on": path guiding learned per frame (tracer guiding/)
 //!
 //! [camera_path]                     # optional here if the scene has one
 //! fps = 24
@@ -40,7 +41,7 @@ use crate::estimator::Estimator;
 use crate::frames::FrameSet;
 use crate::pipeline::{Outputs, Pipeline, Sampling};
 use eyeadapt_scene::{CameraMotion, Scene, SourceMap};
-use eyeadapt_tracer::{AchromaticSpecular, PathSettings, RenderSettings, SceneData, View};
+use eyeadapt_tracer::{AchromaticSpecular, Guiding, PathSettings, RenderSettings, SceneData, View};
 use serde::Deserialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -73,6 +74,7 @@ struct RenderTable {
     max_depth: Option<Spanned<i64>>,
     rr_depth: Option<Spanned<i64>>,
     exposure: Option<Spanned<f64>>,
+    guiding: Option<Spanned<String>>,
 }
 
 /// Temporal adaptation filters applied to the per-frame whites at report time.
@@ -103,6 +105,8 @@ pub struct Job {
     pub height: u32,
     pub spp: u32,
     pub path_settings: PathSettings,
+    /// Path guiding; in the hash only when on, so that jobs without it keep their hashes.
+    pub guiding: Guiding,
     pub seed: u64,
     pub exposure: f32,
     pub estimators: Vec<Estimator>,
@@ -155,6 +159,7 @@ impl Job {
                 frame: 0,
                 filter: self.scene.render.filter.unwrap_or_default(),
                 wcam_specular: renderer_specular(self.estimator_config.wcam.specular),
+                guiding: self.guiding,
             },
             estimators: &self.estimators,
             config: &self.estimator_config,
@@ -303,6 +308,7 @@ fn parse_job(text: &str, source: &str, dir: &Path, o: &JobOverrides) -> Result<J
         height,
         spp: settings.spp,
         path_settings: settings.path,
+        guiding: settings.guiding,
         seed,
         exposure,
         estimators,
@@ -409,6 +415,19 @@ fn render_table(r: Option<&RenderTable>, p: &mut Problems) -> (Sampling, f32) {
             .int(r.and_then(|r| r.rr_depth.as_ref()), "rr_depth", 1, 1024)
             .map(|v| v as u32),
         seed: None,
+        guiding: r
+            .and_then(|r| r.guiding.as_ref())
+            .and_then(|g| match g.get_ref().as_str() {
+                "off" => Some(Guiding::Off),
+                "on" => Some(Guiding::On),
+                other => {
+                    p.at(
+                        g.span().start,
+                        format!("render.guiding \"{other}\" must be \"off\" or \"on\""),
+                    );
+                    None
+                }
+            }),
     };
     let exposure = match r.and_then(|r| r.exposure.as_ref()) {
         Some(e) if e.get_ref().is_finite() && e.get_ref().abs() <= 30.0 => *e.get_ref() as f32,
@@ -537,6 +556,9 @@ pub fn job_hash(job: &Job) -> String {
         job.adaptation,
         job.temporal
     ));
+    if job.guiding != Guiding::Off {
+        h.update(format!("guiding {:?}\n", job.guiding));
+    }
     h.update(format!("scene {}\n", job.scene.fingerprint()));
     for f in 0..job.path.frame_count() {
         let v = job.view(f as u32);

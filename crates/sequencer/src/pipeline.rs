@@ -11,7 +11,9 @@ use crate::estimator::Estimator;
 use crate::output::{write_exr, write_png};
 use eyeadapt_color::Estimate;
 use eyeadapt_scene::Scene;
-use eyeadapt_tracer::{Frame, PathSettings, RenderSettings, SceneData, View, render_with_progress};
+use eyeadapt_tracer::{
+    Frame, Guiding, PathSettings, RenderSettings, SceneData, View, render_with_progress,
+};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -29,6 +31,8 @@ pub struct Sampling {
     pub max_depth: Option<i32>,
     pub rr_depth: Option<u32>,
     pub seed: Option<u64>,
+    /// Path guiding (off unless set).
+    pub guiding: Option<Guiding>,
 }
 
 impl Sampling {
@@ -41,6 +45,7 @@ impl Sampling {
             max_depth: self.max_depth.or(fallback.max_depth),
             rr_depth: self.rr_depth.or(fallback.rr_depth),
             seed: self.seed.or(fallback.seed),
+            guiding: self.guiding.or(fallback.guiding),
         }
     }
 
@@ -56,6 +61,7 @@ impl Sampling {
             frame: 0,
             filter: scene.render.filter.unwrap_or_default(),
             wcam_specular: Default::default(),
+            guiding: self.guiding.unwrap_or_default(),
         }
     }
 }

@@ -9,7 +9,8 @@
 //! samples are splatted into a private buffer covering the rows they reach; the buffers are
 //! then added into the image one row after another, in row order, so the sums (and bits) do
 //! not depend on the thread count. The AOVs stay per-pixel means.
-use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace};
+use crate::guiding::{Guiding, Record, SdTree, Tally, passes, split_threshold};
+use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace_guided};
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use eyeadapt_scene::{PixelFilter, Projection};
@@ -177,6 +178,8 @@ pub struct RenderSettings {
     pub filter: PixelFilter,
     /// How the WCAM re-render (the `achromatic` AOV) takes specular first bounces.
     pub wcam_specular: AchromaticSpecular,
+    /// Path guiding, learned per frame from the frame's own samples (`guiding/`).
+    pub guiding: Guiding,
 }
 
 /// Counters of one render.
@@ -236,6 +239,8 @@ pub fn render(scene: &SceneData, view: &View, settings: &RenderSettings) -> Fram
 
 /// [`render`], calling `row_done` (from any worker thread) each time a row of pixels is
 /// finished, so that callers can show progress inside a frame. The pixels do not depend on it.
+/// A guided frame (`settings.guiding`) renders in passes (`guiding/`); rows count in its last
+/// pass, which holds about half the samples.
 pub fn render_with_progress(
     scene: &SceneData,
     view: &View,
@@ -244,25 +249,141 @@ pub fn render_with_progress(
 ) -> Frame {
     let start = Instant::now();
     let (w, h) = (view.width as usize, view.height as usize);
-    let basis = view.basis();
-    let reach = settings.filter.reach();
     let splats = settings.filter != PixelFilter::Box;
-    // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
-    let band = 2 * reach + 1;
-    let thin_lens = match view.projection {
-        Projection::ThinLens { .. } => true,
-        Projection::Shifted {
-            aperture_radius, ..
-        } => aperture_radius > 0.0,
-        _ => false,
+    let mut rows = vec![vec![PixelAcc::default(); w]; h];
+    let mut beauty = vec![(DVec3::ZERO, 0.0); if splats { w * h } else { 0 }];
+    let base = Pass {
+        scene,
+        view,
+        settings,
+        samples: 0..settings.spp,
+        guide: None,
+        row_done,
     };
-    let render_pixel = |x: usize, y: usize, splat: &mut [(DVec3, f64)]| -> PixelAcc {
+    match settings.guiding {
+        Guiding::Off => base.render(&mut rows, &mut beauty, None),
+        Guiding::On => {
+            let g = &scene.geometry;
+            let mut tree = SdTree::new(g.bounds_min, g.bounds_max);
+            let schedule = passes(settings.spp);
+            let mut first = 0;
+            for (k, &n) in schedule.iter().enumerate() {
+                let samples = first..first + n;
+                if k + 1 == schedule.len() {
+                    let p = Pass {
+                        samples,
+                        guide: Some(&tree),
+                        ..base
+                    };
+                    p.render(&mut rows, &mut beauty, None);
+                } else {
+                    let mut tally = Tally::new(&tree);
+                    let p = Pass {
+                        samples,
+                        guide: Some(&tree),
+                        row_done: &|| {},
+                        ..base
+                    };
+                    p.render(&mut rows, &mut beauty, Some(&mut tally));
+                    tree.learn(&tally, split_threshold(tally.total));
+                }
+                first += n;
+            }
+        }
+    }
+    let mut f = assemble(&rows, splats.then_some(beauty.as_slice()), (w, h));
+    f.stats.seconds = start.elapsed().as_secs_f64();
+    f
+}
+
+/// One pass over the frame: samples `samples` of every pixel, added to the pixels'
+/// accumulators (and, with a splatting filter, the beauty sums), sampling from `guide`.
+struct Pass<'a> {
+    scene: &'a SceneData,
+    view: &'a View,
+    settings: &'a RenderSettings,
+    samples: std::ops::Range<u32>,
+    guide: Option<&'a SdTree>,
+    row_done: &'a (dyn Fn() + Sync),
+}
+
+impl Pass<'_> {
+    /// Renders the pass into `rows` and `beauty`; given a `tally`, the paths' training
+    /// records are added to it, block after block of rows in row order.
+    fn render(
+        &self,
+        rows: &mut [Vec<PixelAcc>],
+        beauty: &mut [(DVec3, f64)],
+        mut tally: Option<&mut Tally>,
+    ) {
+        let (w, h) = (self.view.width as usize, self.view.height as usize);
+        let settings = self.settings;
+        let reach = settings.filter.reach();
+        let splats = settings.filter != PixelFilter::Box;
+        // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
+        let band = 2 * reach + 1;
+        let learn = tally.is_some();
+        let render_row = |(y, row): (usize, &mut Vec<PixelAcc>)| {
+            let mut splat = vec![(DVec3::ZERO, 0.0); if splats { band * w } else { 0 }];
+            let mut records = Vec::new();
+            for (x, acc) in row.iter_mut().enumerate() {
+                let recs = learn.then_some(&mut records);
+                self.pixel(x, y, acc, &mut splat, recs);
+            }
+            (self.row_done)();
+            (splat, records)
+        };
+        // Rows in blocks, so that at most a block's splat buffers and records exist at once
+        // (unguided with the box filter there are none: one block).
+        let block_rows = if self.guide.is_some() {
+            8
+        } else if splats {
+            32
+        } else {
+            h.max(1)
+        };
+        for (b, block) in rows.chunks_mut(block_rows).enumerate() {
+            let start = b * block_rows;
+            let done: Vec<_> = block
+                .par_iter_mut()
+                .enumerate()
+                .map(|(i, row)| render_row((start + i, row)))
+                .collect();
+            for (i, (splat, records)) in done.into_iter().enumerate() {
+                if splats {
+                    add_splats(beauty, &splat, (w, h), start + i, reach);
+                }
+                if let Some(t) = tally.as_deref_mut() {
+                    t.add(&records);
+                }
+            }
+        }
+    }
+
+    /// Renders the pass's samples of pixel (x, y) into `acc` and the row's `splat` buffer.
+    fn pixel(
+        &self,
+        x: usize,
+        y: usize,
+        acc: &mut PixelAcc,
+        splat: &mut [(DVec3, f64)],
+        mut records: Option<&mut Vec<Record>>,
+    ) {
+        let (settings, view) = (self.settings, self.view);
+        let basis = view.basis();
+        let thin_lens = match view.projection {
+            Projection::ThinLens { .. } => true,
+            Projection::Shifted {
+                aperture_radius, ..
+            } => aperture_radius > 0.0,
+            _ => false,
+        };
+        let splats = settings.filter != PixelFilter::Box;
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
         let seeds = StreamSeeds::new(key);
         // The aperture has its own stream, so pinhole renders keep their samples.
         let lens_seeds = thin_lens.then(|| StreamSeeds::new(hash_key(&[key, 0x1E45])));
-        let mut acc = PixelAcc::default();
-        for i in 0..settings.spp {
+        for i in self.samples.clone() {
             let mut s = SampleStream::seeded(&seeds, i);
             // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
             let j = s.next_2d();
@@ -270,14 +391,15 @@ pub fn render_with_progress(
                 .as_ref()
                 .map_or([0.5; 2], |k| SampleStream::seeded(k, i).next_2d());
             let (origin, d) = view.ray(basis, x as f32 + j[0], y as f32 + j[1], lens);
-            let p = trace(
-                scene,
-                origin,
-                d,
+            let p = trace_guided(
+                self.scene,
+                (origin, d),
                 Origin::Camera,
                 &mut s,
                 settings.path,
                 Some(settings.wcam_specular),
+                self.guide,
+                records.as_deref_mut(),
             );
             let parts = [p.l, p.achromatic, p.irradiance, p.albedo];
             if parts.iter().any(|v| !v.is_finite()) {
@@ -290,7 +412,7 @@ pub fn render_with_progress(
                 splat_sample(
                     splat,
                     settings.filter,
-                    (w, reach),
+                    (view.width as usize, settings.filter.reach()),
                     (x as f32 + j[0], j[1]),
                     d3(p.l),
                 );
@@ -307,34 +429,7 @@ pub fn render_with_progress(
                 acc.emitters += 1;
             }
         }
-        acc
-    };
-    let render_row = |y: usize| -> (Vec<PixelAcc>, Vec<(DVec3, f64)>) {
-        let mut splat = vec![(DVec3::ZERO, 0.0); if splats { band * w } else { 0 }];
-        let row = (0..w).map(|x| render_pixel(x, y, &mut splat)).collect();
-        row_done();
-        (row, splat)
-    };
-    // Rows in blocks, so that at most a block's splat buffers exist at once (with the box
-    // filter there are none: one block).
-    let block_rows = if splats { 32 } else { h.max(1) };
-    let mut rows: Vec<Vec<PixelAcc>> = Vec::with_capacity(h);
-    let mut beauty = vec![(DVec3::ZERO, 0.0); if splats { w * h } else { 0 }];
-    for start in (0..h).step_by(block_rows) {
-        let block: Vec<_> = (start..(start + block_rows).min(h))
-            .into_par_iter()
-            .map(render_row)
-            .collect();
-        for (i, (row, splat)) in block.into_iter().enumerate() {
-            if splats {
-                add_splats(&mut beauty, &splat, (w, h), start + i, reach);
-            }
-            rows.push(row);
-        }
     }
-    let mut f = assemble(&rows, splats.then_some(beauty.as_slice()), (w, h));
-    f.stats.seconds = start.elapsed().as_secs_f64();
-    f
 }
 
 /// The frame from the rows' accumulators and, with a splatting filter, the beauty sums.

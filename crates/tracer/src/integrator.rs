@@ -7,6 +7,7 @@
 //! traced, with survival probability min(max(throughput), 0.95).
 use crate::emitter::luminance;
 use crate::geometry::RayScratch;
+use crate::guiding::{Record, SdTree};
 use crate::path_state::{PathState, Vertex, VertexSamples};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
@@ -185,13 +186,30 @@ pub fn trace(
     settings: PathSettings,
     aovs: Option<AchromaticSpecular>,
 ) -> PathSample {
+    trace_guided(scene, (o, d), from, s, settings, aovs, None, None)
+}
+
+/// [`trace`], sampling from `guide` where guiding applies (`guiding/`) and, given `records`,
+/// appending the path's training records to it. Without a guide it is [`trace`], bit for bit.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn trace_guided(
+    scene: &SceneData,
+    (o, d): (Vec3A, Vec3A),
+    from: Origin,
+    s: &mut SampleStream,
+    settings: PathSettings,
+    aovs: Option<AchromaticSpecular>,
+    guide: Option<&SdTree>,
+    records: Option<&mut Vec<Record>>,
+) -> PathSample {
     let mut scratch = scene.geometry.scratch();
     // The first vertex's light sample comes from the dimensions right after the caller's
     // direction (the pixel position, the eye's cardioid direction), in the same 4-D Sobol chunk:
     // direct light at the first hit is then one jointly stratified 4-D integral over
     // (direction, light point) instead of two 2-D ones paired at random. Every later vertex
     // likewise draws its light sample together with the direction that leads to it.
-    let mut path = PathState::new(o, d, from, s.next_2d(), aovs);
+    let mut path =
+        PathState::new(o, d, from, s.next_2d(), aovs).guided_by(guide, records.is_some());
     let max_depth = if settings.max_depth < 0 {
         u32::MAX
     } else {
@@ -218,12 +236,16 @@ pub fn trace(
         }
         let u = VertexSamples::draw(s);
         let v = Vertex::new(scene, &si, -path.d, &u);
+        let g = if last { None } else { path.guide_at(&v) };
         if !last {
-            path.sample_light(scene, &mut scratch, &v, &u);
+            path.sample_light(scene, &mut scratch, &v, &u, g);
         }
-        if !path.scatter(&v, &u, last) || !path.roulette(settings.rr_depth, u.rr) {
+        if !path.scatter(&v, &u, last, g) || !path.roulette(settings.rr_depth, u.rr) {
             break;
         }
+    }
+    if let (Some(r), Some(tree), Some(out)) = (&path.recorder, guide, records) {
+        r.finish(path.out.l, tree, out);
     }
     path.out
 }

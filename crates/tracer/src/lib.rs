@@ -22,6 +22,7 @@ mod envmap;
 mod eye;
 mod film;
 mod geometry;
+mod guiding;
 mod integrator;
 mod interaction;
 mod light_pick;
@@ -54,6 +55,7 @@ pub use crate::eye::{
 };
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
 pub use crate::geometry::{Geometry, Hit, RayScratch};
+pub use crate::guiding::{DTree, Guiding, SdTree, from_square, to_square};
 pub use crate::integrator::{AchromaticSpecular, Origin, PathSample, PathSettings, trace};
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::lights::LightSet;

@@ -17,6 +17,7 @@ use crate::bsdf::{Bsdf, BsdfSample};
 use crate::bump::Terminator;
 use crate::emitter::luminance;
 use crate::geometry::RayScratch;
+use crate::guiding::{DTree, Recorder, SdTree, guidable, mixture_pdf, sample_guided};
 use crate::integrator::{
     AchromaticSpecular, Frame, Origin, PathSample, achromatic_ratio, grey_ratio, irradiance_ratio,
     offset, power_heuristic,
@@ -31,7 +32,7 @@ use crate::shadow::shadow_transmittance;
 use glam::Vec3A;
 
 /// The state of a path between steps.
-pub struct PathState {
+pub struct PathState<'g> {
     /// The ray to trace next.
     pub o: Vec3A,
     pub d: Vec3A,
@@ -63,6 +64,18 @@ pub struct PathState {
     /// Distance along the path to the current hit while `specular_chain` (the depth AOV).
     travelled: f32,
     pub out: PathSample,
+    /// The frame's guide, when guiding is on (`guiding/`).
+    guide: Option<&'g SdTree>,
+    /// The path's training records, in a pass that learns.
+    pub recorder: Option<Recorder>,
+}
+
+/// Guiding at one vertex: its leaf of the spatial tree and, once the passes before learned
+/// something there, the distribution to sample.
+#[derive(Clone, Copy)]
+pub struct GuideAt<'g> {
+    leaf: u32,
+    dist: Option<&'g DTree>,
 }
 
 /// The current surface, as the steps after [`PathState::shade_hit`] see it.
@@ -233,7 +246,7 @@ impl Vertex {
     }
 }
 
-impl PathState {
+impl<'g> PathState<'g> {
     #[inline]
     pub fn new(
         o: Vec3A,
@@ -241,7 +254,7 @@ impl PathState {
         from: Origin,
         u_light: [f32; 2],
         aovs: Option<AchromaticSpecular>,
-    ) -> PathState {
+    ) -> PathState<'g> {
         PathState {
             o,
             d,
@@ -260,7 +273,34 @@ impl PathState {
             crossed: false,
             travelled: 0.0,
             out: PathSample::default(),
+            guide: None,
+            recorder: None,
         }
+    }
+
+    /// The path samples from `guide` where guiding applies, and records what it sees when
+    /// `learn`.
+    #[inline]
+    pub fn guided_by(mut self, guide: Option<&'g SdTree>, learn: bool) -> PathState<'g> {
+        self.guide = guide;
+        self.recorder = (guide.is_some() && learn).then(Recorder::default);
+        self
+    }
+
+    /// Guiding at `v`: none without a guide, or where it does not apply (`guidable`, and not
+    /// on masks or panes, whose straight-through events are no BSDF lobe).
+    #[inline]
+    pub fn guide_at(&self, v: &Vertex) -> Option<GuideAt<'g>> {
+        let tree = self.guide?;
+        if !guidable(&v.bsdf) || v.opacity < 1.0 || v.pane {
+            return None;
+        }
+        let leaf = tree.leaf_at(v.p_front);
+        let dist = &tree.leaves[leaf as usize].sampling;
+        Some(GuideAt {
+            leaf,
+            dist: dist.has_energy().then_some(dist),
+        })
     }
 
     /// The factor that turns light reaching the camera through the AOV vertex `v` (its BSDF
@@ -343,6 +383,7 @@ impl PathState {
         scratch: &mut RayScratch,
         v: &Vertex,
         u: &VertexSamples,
+        g: Option<GuideAt>,
     ) {
         if v.bsdf.is_delta() {
             return;
@@ -377,7 +418,11 @@ impl PathState {
         let w = if ls.delta {
             1.0
         } else {
-            power_heuristic(ls.pdf, v.bsdf.pdf(v.wo_l, wi_l) * v.opacity)
+            let pdf = v.bsdf.pdf(v.wo_l, wi_l) * v.opacity;
+            match g.and_then(|g| g.dist) {
+                None => power_heuristic(ls.pdf, pdf),
+                Some(d) => power_heuristic(ls.pdf, mixture_pdf(d, &v.frame, wi_l, pdf)),
+            }
         };
         let c = self.beta * f * ls.li * tr * (wi_l.z.abs() * w / ls.pdf);
         if self.specular_chain {
@@ -397,7 +442,13 @@ impl PathState {
     /// depth limit (`last`) only a crossing of a see-through surface continues: it is no
     /// segment, and shadow rays counted what lies behind it.
     #[inline]
-    pub fn scatter(&mut self, v: &Vertex, u: &VertexSamples, last: bool) -> bool {
+    pub fn scatter(
+        &mut self,
+        v: &Vertex,
+        u: &VertexSamples,
+        last: bool,
+        g: Option<GuideAt>,
+    ) -> bool {
         let through = u.mask >= v.opacity;
         let bs = if through {
             // Through a mask's hole: straight on, unweighted.
@@ -408,6 +459,9 @@ impl PathState {
                 weight: Vec3A::ONE,
                 delta: true,
             })
+        } else if let Some(dist) = g.and_then(|g| g.dist) {
+            // Guided vertices are opaque (`guide_at`).
+            sample_guided(&v.bsdf, dist, &v.frame, v.wo_l, v.lobe, u.bsdf)
         } else {
             v.bsdf.sample(v.wo_l, v.lobe, u.bsdf).map(|b| BsdfSample {
                 pdf: b.pdf * v.opacity,
@@ -461,6 +515,11 @@ impl PathState {
             self.ke = irradiance_ratio(bs.f);
         }
         self.beta *= bs.weight;
+        if let (Some(r), Some(g)) = (&mut self.recorder, g)
+            && !bs.delta
+        {
+            r.push(g.leaf, wi, bs.pdf, self.beta, self.out.l);
+        }
         self.u_light = u.light_next;
         self.prev = if bs.delta {
             Origin::Camera

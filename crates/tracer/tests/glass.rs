@@ -45,6 +45,7 @@ fn shoot(s: &Scene, spp: u32, max_depth: i32) -> Frame {
         frame: 0,
         filter: Default::default(),
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     render(&SceneData::new(s), &view, &settings)
 }

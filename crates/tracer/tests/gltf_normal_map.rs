@@ -91,6 +91,7 @@ fn brightness(normal: Option<[u8; 3]>, rotation: [f32; 4]) -> f32 {
         frame: 0,
         filter: Default::default(),
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     let f = render(
         &SceneData::new(&scene),

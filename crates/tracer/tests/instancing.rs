@@ -86,6 +86,7 @@ fn instances_render_the_flattened_image() {
         frame: 0,
         filter: eyeadapt_scene::PixelFilter::Box,
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     let (a, b) = (scene(true), scene(false));
     let (da, db) = (SceneData::new(&a), SceneData::new(&b));

@@ -16,6 +16,7 @@ fn settings(filter: PixelFilter) -> RenderSettings {
         frame: 0,
         filter,
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     }
 }
 

@@ -45,6 +45,7 @@ fn the_albedo_aov_reads_textured_reflectance() {
         frame: 0,
         filter: Default::default(),
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     let f = render(&SceneData::new(&s), &view, &settings);
     // Quad UV (0, 0) is at (−1, 0, 1): the image's bottom-left (up is −z). u < ½ and v < ½

@@ -79,6 +79,7 @@ fn shoot(floor: &str, mode: AchromaticSpecular) -> Frame {
     let view = View::from_camera(s.camera.as_ref().unwrap());
     let settings = eyeadapt_tracer::RenderSettings {
         wcam_specular: mode,
+        guiding: Default::default(),
         ..common::settings(16, 1, 4)
     };
     render(&SceneData::new(&s), &view, &settings)

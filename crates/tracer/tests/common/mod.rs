@@ -13,5 +13,6 @@ pub fn settings(spp: u32, seed: u64, max_depth: i32) -> RenderSettings {
         frame: 0,
         filter: eyeadapt_scene::PixelFilter::Box,
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     }
 }
