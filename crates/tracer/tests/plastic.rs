@@ -69,6 +69,7 @@ fn head_on(bsdf: Bsdf) -> Vec3 {
         frame: 0,
         filter: Default::default(),
         wcam_specular: Default::default(),
+        guiding: Default::default(),
     };
     let f: Frame = render(&SceneData::new(&s), &view, &settings);
     f.rgb.iter().map(|&x| Vec3::from(x)).sum::<Vec3>() / f.rgb.len() as f32
