@@ -262,27 +262,25 @@ mod tests {
             h = crate::sampler::mix64(h);
             (h >> 40) as f32 / (1u64 << 24) as f32
         };
+        // A point of the square (mostly in one corner and along one edge) and its value.
+        let point = |a: f32, b: f32| {
+            if a < 0.6 {
+                [0.1 * b, 0.05 + 0.1 * a]
+            } else {
+                [b, 0.95 * a]
+            }
+        };
         for _ in 0..3 {
             for _ in 0..20000 {
                 let (a, b) = (next(), next());
-                let p = if a < 0.6 {
-                    [0.1 * b, 0.05 + 0.1 * a]
-                } else {
-                    [b, 0.95 * a]
-                };
-                t.add(t.slot(p), (1.0 + 4.0 * b) as f64);
+                t.add(t.slot(point(a, b)), (1.0 + 4.0 * b) as f64);
             }
             t.sum_up();
             t = t.refined(0.01);
         }
         for _ in 0..20000 {
             let (a, b) = (next(), next());
-            let p = if a < 0.6 {
-                [0.1 * b, 0.05 + 0.1 * a]
-            } else {
-                [b, 0.95 * a]
-            };
-            t.add(t.slot(p), 1.0);
+            t.add(t.slot(point(a, b)), 1.0);
         }
         t.sum_up();
         t
