@@ -338,8 +338,8 @@ impl Tree {
             return None;
         }
         let target = u * total;
+        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
         if target < root {
-            let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
             let v = (target / root).min(1.0 - f32::EPSILON / 2.0);
             let (i, p) = self.tree.pick(x, n, v, leaf)?;
             return Some((self.unit[i] as usize, root / total * p));
@@ -358,7 +358,6 @@ impl Tree {
         }
         // Rounding may leave `target` at the running sum: the last unit that can contribute.
         last.or_else(|| {
-            let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
             let (i, p) = self.tree.pick(x, n, 1.0 - f32::EPSILON / 2.0, leaf)?;
             Some((self.unit[i] as usize, root / total * p))
         })
