@@ -541,8 +541,9 @@ fn job_frames(spec: Option<&Spanned<String>>, path: &CameraMotion, p: &mut Probl
 pub fn job_hash(job: &Job) -> String {
     let mut h = Sha256::new();
     h.update(format!(
-        "eyeadapt {} render-v1\n",
-        env!("CARGO_PKG_VERSION")
+        "eyeadapt {} render-v{}\n",
+        env!("CARGO_PKG_VERSION"),
+        eyeadapt_tracer::RENDER_REVISION
     ));
     h.update(format!(
         "{}x{} spp {} {:?} seed {} exposure {} outputs {:?}\n",

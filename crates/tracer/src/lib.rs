@@ -36,6 +36,7 @@ mod pplastic;
 mod principled;
 mod principled_lobes;
 mod principled_thin;
+mod revision;
 mod sampler;
 mod scene_data;
 mod shadow;
@@ -60,6 +61,7 @@ pub use crate::integrator::{AchromaticSpecular, Origin, PathSample, PathSettings
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::lights::LightSet;
 pub use crate::material::Materials;
+pub use crate::revision::RENDER_REVISION;
 pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;
 pub use obvhs::BvhBuildParams;

@@ -1,0 +1,21 @@
+//! The render revision: a number that changes whenever the renderer's output bits change.
+//!
+//! A sequence's output directory is keyed by a hash of the job (`eyeadapt-sequencer`'s
+//! `job_hash`), and a resumed or merged run refuses a directory whose hash differs, so that
+//! frames of two renderers never end up in one video. The job's inputs alone cannot say
+//! whether the *code* that renders them changed its bits; this number does. It is part of the
+//! job hash, and `tests/render_revision.rs` pins the bits of a set of small renders that cover
+//! the renderer's paths (built-in scenes, a Mitsuba XML scene, more lights than the direct
+//! light choice handles, a splatting filter, the eye sensor) to it: a change that moves any of
+//! those bits fails the test until this number is raised and the pins are retaken.
+//!
+//! Raising it makes every older output directory refuse to resume with this binary (the user
+//! is told to use another `--out` or `--force`), which is exactly what should happen when the
+//! frames would differ.
+
+/// The current render revision (see the module documentation).
+///
+/// 1: the renderer up to the smooth-plastic and light-tree changes of issue 23.
+/// 2: smooth `plastic` in Mitsuba XML is a smooth coating (α 0), scenes with more than 16
+///    lights choose them through the light tree.
+pub const RENDER_REVISION: u32 = 2;
