@@ -333,12 +333,18 @@ impl Tree {
     }
 
     fn pick(&self, bounds: &[Bounds], x: Vec3A, n: Option<Vec3A>, u: f32) -> Option<(usize, f32)> {
+        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
+        if self.unbounded.is_empty() {
+            // Nothing competes with the root: the walk alone chooses (and finds no light where
+            // the root's children reach none).
+            let (i, p) = self.tree.pick(x, n, u, leaf)?;
+            return Some((self.unit[i] as usize, p));
+        }
         let (root, total) = self.top(bounds, x, n);
         if total.is_nan() || total <= 0.0 {
             return None;
         }
         let target = u * total;
-        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
         if target < root {
             let v = (target / root).min(1.0 - f32::EPSILON / 2.0);
             let (i, p) = self.tree.pick(x, n, v, leaf)?;
@@ -364,16 +370,17 @@ impl Tree {
     }
 
     fn prob(&self, bounds: &[Bounds], k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
+        if self.unbounded.is_empty() {
+            return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
+        }
         let (root, total) = self.top(bounds, x, n);
         if total.is_nan() || total <= 0.0 {
             return 0.0;
         }
         match self.leaf[k] {
             u32::MAX => importance(&bounds[k], x, n) / total,
-            i => {
-                let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
-                root / total * self.tree.prob(i as usize, x, n, leaf)
-            }
+            i => root / total * self.tree.prob(i as usize, x, n, leaf),
         }
     }
 }
