@@ -177,8 +177,16 @@ mod tests {
         // Seen edge-on it keeps the floor's cosine, and below the tangent plane it is out.
         assert_eq!(b.importance(x, Some(Vec3A::X))[0], 0.5e-3);
         assert_eq!(b.importance(x, Some(-Vec3A::Y))[0], 0.0);
-        // The empty lanes have no power.
-        assert_eq!(&b.importance(x, Some(Vec3A::Y))[1..], &[0.0; 3]);
+        // The empty lanes have no power, wherever x is.
+        for x in [
+            x,
+            Vec3A::ZERO,
+            Vec3A::new(1e-20, 0.0, 0.0),
+            Vec3A::splat(-7.0),
+        ] {
+            assert_eq!(&b.importance(x, Some(Vec3A::Y))[1..], &[0.0; 3]);
+            assert_eq!(&b.importance(x, None)[1..], &[0.0; 3]);
+        }
     }
 
     #[test]

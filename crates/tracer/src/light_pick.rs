@@ -77,6 +77,8 @@ struct Tree {
     tree: LightTree,
     /// The unit of each tree light.
     unit: Vec<u32>,
+    /// The bounds of each tree light's unit (a copy of `bounds[unit[i]]`, one lookup less a leaf).
+    leaf_bounds: Vec<Bounds>,
     /// Each unit's tree light, `u32::MAX` for the units outside it.
     leaf: Vec<u32>,
     /// Units outside the tree (no position: directional lights, the environment).
@@ -310,6 +312,7 @@ impl Tree {
         }
         Some(Tree {
             tree: LightTree::build(&lights)?,
+            leaf_bounds: unit.iter().map(|&k| bounds[k as usize]).collect(),
             unit,
             leaf,
             unbounded,
@@ -333,7 +336,7 @@ impl Tree {
     }
 
     fn pick(&self, bounds: &[Bounds], x: Vec3A, n: Option<Vec3A>, u: f32) -> Option<(usize, f32)> {
-        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
         if self.unbounded.is_empty() {
             // Nothing competes with the root: the walk alone chooses (and finds no light where
             // the root's children reach none).
@@ -370,7 +373,7 @@ impl Tree {
     }
 
     fn prob(&self, bounds: &[Bounds], k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
-        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
         if self.unbounded.is_empty() {
             return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
         }
@@ -441,6 +444,50 @@ fn light_bounds(b: &Bounds) -> Option<LightBounds> {
     })
 }
 
+/// How far `x` is in front of an area unit's plane, or `None` where the unit delivers nothing
+/// there: `x` behind (or in) the one-sided emitter's plane, where every point of it faces away,
+/// or the unit entirely below the receiver's tangent plane (linear in the light point, so the
+/// corners decide for the whole polygon).
+#[inline]
+fn area_front(
+    centre: Vec3A,
+    normal: Vec3A,
+    corners: &[Vec3A; 4],
+    x: Vec3A,
+    n: Option<Vec3A>,
+) -> Option<f32> {
+    let front = (x - centre).dot(normal);
+    if front <= 0.0 {
+        return None;
+    }
+    if let Some(n) = n
+        && corners.iter().all(|c| (*c - x).dot(n) <= 0.0)
+    {
+        return None;
+    }
+    Some(front)
+}
+
+/// A unit's weight as a leaf of the light tree, given its node's bound there: an area unit
+/// keeps the bound where it can deliver anything (the exact zero tests of [`importance`]) and
+/// gets 0 elsewhere; a delta light gets its own importance (its cone and beam tests).
+#[inline(always)]
+fn tree_leaf(b: &Bounds, x: Vec3A, n: Option<Vec3A>, bound: f32) -> f32 {
+    match *b {
+        Bounds::Area {
+            centre,
+            normal,
+            ref corners,
+            power,
+            ..
+        } => match area_front(centre, normal, corners, x, n) {
+            Some(_) if power > 0.0 => bound,
+            _ => 0.0,
+        },
+        _ => importance(b, x, n),
+    }
+}
+
 /// Estimated irradiance a unit delivers at `x` (normal `n`; scalar irradiance without one);
 /// exactly 0 only where it delivers none.
 #[inline]
@@ -453,18 +500,9 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
             corners,
             power,
         } => {
-            // Behind (or in) the one-sided emitter's plane: every point of it faces away.
-            let front = (x - centre).dot(normal);
-            if front <= 0.0 {
+            let Some(front) = area_front(centre, normal, &corners, x, n) else {
                 return 0.0;
-            }
-            // Entirely below the receiver's tangent plane (linear in the light point, so the
-            // corners decide for the whole polygon).
-            if let Some(n) = n
-                && corners.iter().all(|c| (*c - x).dot(n) <= 0.0)
-            {
-                return 0.0;
-            }
+            };
             let to = centre - x;
             let d2 = to.length_squared();
             let d = d2.sqrt();

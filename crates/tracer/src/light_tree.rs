@@ -16,9 +16,11 @@
 //!
 //! Choosing walks from the root: at each node one child is taken with probability in
 //! proportion to the children's importances, and the sample number is rescaled to stay
-//! uniform. A leaf's importance is its light's own exact one (`light_pick::importance`), so a
-//! light that cannot contribute at x is never chosen there, and one that can always keeps a
-//! positive probability (every ancestor bounds it): the estimator stays unbiased. The
+//! uniform. A leaf's weight comes from the caller, given the leaf's bound: `light_pick` keeps
+//! the bound for an area light that passes its exact tests (x in front of it, part of it above
+//! x's tangent plane) and uses a delta light's own importance, so a light that cannot
+//! contribute at x is never chosen there, and one that can always keeps a positive
+//! probability (every ancestor bounds it): the estimator stays unbiased. The
 //! probability of a given light, which MIS needs at emitter hits, is the product of the branch
 //! probabilities along its path from the root, recomputed the same way (the same bits).
 //!
@@ -105,31 +107,24 @@ const LEAF: u32 = 1 << 31;
 struct Node {
     /// The children's bounds, one lane each.
     bounds: Bounds4,
-    /// Each child: a node's index, or `LEAF | light`.
+    /// Each child: a node's index, or `LEAF | light`; `u32::MAX` past the last (there are 2
+    /// to 4, or 1 for a root over one light).
     child: [u32; 4],
-    /// How many children (1 to 4; 1 only for a root over one light).
-    count: u8,
     /// Bit j set where child j is a leaf.
     leaves: u8,
 }
 
 impl Node {
-    /// The children's importances at (`x`, `n`): a leaf's from `leaf(light)`, its own; 0
-    /// beyond `count`.
+    /// The children's importances at (`x`, `n`): a leaf's is `leaf(light, its bound)`; 0
+    /// past the last child (lanes without a node have no power).
     #[inline]
-    fn weights(&self, x: Vec3A, n: Option<Vec3A>, leaf: &impl Fn(usize) -> f32) -> [f32; 4] {
-        let all = (1u8 << self.count) - 1;
-        let mut w = if self.leaves == all {
-            [0.0; 4]
-        } else {
-            self.bounds.importance(x, n)
-        };
-        for (j, wj) in w.iter_mut().enumerate() {
-            if j >= self.count as usize {
-                *wj = 0.0;
-            } else if self.leaves >> j & 1 != 0 {
-                *wj = leaf((self.child[j] & !LEAF) as usize);
-            }
+    fn weights(&self, x: Vec3A, n: Option<Vec3A>, leaf: &impl Fn(usize, f32) -> f32) -> [f32; 4] {
+        let mut w = self.bounds.importance(x, n);
+        let mut leaves = self.leaves;
+        while leaves != 0 {
+            let j = leaves.trailing_zeros() as usize;
+            leaves &= leaves - 1;
+            w[j] = leaf((self.child[j] & !LEAF) as usize, w[j]);
         }
         w
     }
@@ -202,7 +197,6 @@ impl LightTree {
         self.nodes.push(Node {
             bounds: Bounds4::pack(&bounds),
             child: [u32::MAX; 4],
-            count: kids.len() as u8,
             leaves: 0,
         });
         for (j, &k) in kids.iter().enumerate() {
@@ -232,7 +226,7 @@ impl LightTree {
         x: Vec3A,
         n: Option<Vec3A>,
         mut u: f32,
-        leaf: impl Fn(usize) -> f32,
+        leaf: impl Fn(usize, f32) -> f32,
     ) -> Option<(usize, f32)> {
         let mut i = 0usize;
         let mut p = 1.0f32;
@@ -267,7 +261,13 @@ impl LightTree {
     }
 
     /// Probability that [`LightTree::pick`] at (`x`, `n`) ends at light `k`.
-    pub fn prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>, leaf: impl Fn(usize) -> f32) -> f32 {
+    pub fn prob(
+        &self,
+        k: usize,
+        x: Vec3A,
+        n: Option<Vec3A>,
+        leaf: impl Fn(usize, f32) -> f32,
+    ) -> f32 {
         let (trail, depth) = self.trails[k];
         let mut i = 0usize;
         let mut p = 1.0f32;

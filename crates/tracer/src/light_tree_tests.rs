@@ -24,8 +24,8 @@ fn points(count: usize) -> Vec<LightBounds> {
 }
 
 /// A point light's exact importance without a receiver normal: its intensity over d².
-fn exact(lights: &[LightBounds], x: Vec3A) -> impl Fn(usize) -> f32 + '_ {
-    move |k| lights[k].phi / (lights[k].lo - x).length_squared()
+fn exact(lights: &[LightBounds], x: Vec3A) -> impl Fn(usize, f32) -> f32 + '_ {
+    move |k, _| lights[k].phi / (lights[k].lo - x).length_squared()
 }
 
 #[test]
@@ -42,13 +42,18 @@ fn every_light_keeps_a_path_and_the_walk_is_shallow() {
             "{count}: depth {depth}"
         );
         for node in &tree.nodes {
-            assert!((1..=4).contains(&node.count));
-            assert!(node.count > 1 || count == 1);
+            let kids = node.child.iter().take_while(|&&c| c != u32::MAX).count();
+            assert!(
+                kids >= 2 || count == 1 && kids == 1,
+                "{count}: {:?}",
+                node.child
+            );
+            assert!(node.child[kids..].iter().all(|&c| c == u32::MAX));
         }
         // Every light is a leaf exactly once, at the end of its own trail.
         let mut seen = vec![0; count];
         for node in &tree.nodes {
-            for j in 0..node.count as usize {
+            for j in 0..4 {
                 if node.leaves >> j & 1 != 0 {
                     seen[(node.child[j] & !LEAF) as usize] += 1;
                 }
@@ -103,12 +108,8 @@ fn a_light_that_cannot_reach_is_never_chosen() {
     let lights = points(27);
     let tree = LightTree::build(&lights).unwrap();
     let x = Vec3A::new(1.0, 2.0, -1.0);
-    let leaf = |k: usize| {
-        if k.is_multiple_of(2) {
-            0.0
-        } else {
-            exact(&lights, x)(k)
-        }
+    let leaf = |k: usize, bound: f32| {
+        if k.is_multiple_of(2) { 0.0 } else { bound }
     };
     let probs: Vec<f32> = (0..27).map(|k| tree.prob(k, x, None, leaf)).collect();
     for (k, &p) in probs.iter().enumerate() {
@@ -130,6 +131,6 @@ fn a_light_that_cannot_reach_is_never_chosen() {
         "{share} of walks lost, expected {lost}"
     );
     // No light reaches: no choice at all.
-    assert!(tree.pick(x, None, 0.5, |_| 0.0).is_none());
-    assert_eq!(tree.prob(3, x, None, |_| 0.0), 0.0);
+    assert!(tree.pick(x, None, 0.5, |_, _| 0.0).is_none());
+    assert_eq!(tree.prob(3, x, None, |_, _| 0.0), 0.0);
 }
