@@ -25,6 +25,7 @@ mod geometry;
 mod guiding;
 mod integrator;
 mod interaction;
+mod light_bounds4;
 mod light_pick;
 mod light_tree;
 mod lights;

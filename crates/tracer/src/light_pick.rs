@@ -77,6 +77,8 @@ struct Tree {
     tree: LightTree,
     /// The unit of each tree light.
     unit: Vec<u32>,
+    /// The bounds of each tree light's unit (a copy of `bounds[unit[i]]`, one lookup less a leaf).
+    leaf_bounds: Vec<Bounds>,
     /// Each unit's tree light, `u32::MAX` for the units outside it.
     leaf: Vec<u32>,
     /// Units outside the tree (no position: directional lights, the environment).
@@ -310,6 +312,7 @@ impl Tree {
         }
         Some(Tree {
             tree: LightTree::build(&lights)?,
+            leaf_bounds: unit.iter().map(|&k| bounds[k as usize]).collect(),
             unit,
             leaf,
             unbounded,
@@ -333,12 +336,18 @@ impl Tree {
     }
 
     fn pick(&self, bounds: &[Bounds], x: Vec3A, n: Option<Vec3A>, u: f32) -> Option<(usize, f32)> {
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        if self.unbounded.is_empty() {
+            // Nothing competes with the root: the walk alone chooses (and finds no light where
+            // the root's children reach none).
+            let (i, p) = self.tree.pick(x, n, u, leaf)?;
+            return Some((self.unit[i] as usize, p));
+        }
         let (root, total) = self.top(bounds, x, n);
         if total.is_nan() || total <= 0.0 {
             return None;
         }
         let target = u * total;
-        let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
         if target < root {
             let v = (target / root).min(1.0 - f32::EPSILON / 2.0);
             let (i, p) = self.tree.pick(x, n, v, leaf)?;
@@ -364,16 +373,17 @@ impl Tree {
     }
 
     fn prob(&self, bounds: &[Bounds], k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        if self.unbounded.is_empty() {
+            return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
+        }
         let (root, total) = self.top(bounds, x, n);
         if total.is_nan() || total <= 0.0 {
             return 0.0;
         }
         match self.leaf[k] {
             u32::MAX => importance(&bounds[k], x, n) / total,
-            i => {
-                let leaf = |i: usize| importance(&bounds[self.unit[i] as usize], x, n);
-                root / total * self.tree.prob(i as usize, x, n, leaf)
-            }
+            i => root / total * self.tree.prob(i as usize, x, n, leaf),
         }
     }
 }
@@ -434,6 +444,50 @@ fn light_bounds(b: &Bounds) -> Option<LightBounds> {
     })
 }
 
+/// How far `x` is in front of an area unit's plane, or `None` where the unit delivers nothing
+/// there: `x` behind (or in) the one-sided emitter's plane, where every point of it faces away,
+/// or the unit entirely below the receiver's tangent plane (linear in the light point, so the
+/// corners decide for the whole polygon).
+#[inline]
+fn area_front(
+    centre: Vec3A,
+    normal: Vec3A,
+    corners: &[Vec3A; 4],
+    x: Vec3A,
+    n: Option<Vec3A>,
+) -> Option<f32> {
+    let front = (x - centre).dot(normal);
+    if front <= 0.0 {
+        return None;
+    }
+    if let Some(n) = n
+        && corners.iter().all(|c| (*c - x).dot(n) <= 0.0)
+    {
+        return None;
+    }
+    Some(front)
+}
+
+/// A unit's weight as a leaf of the light tree, given its node's bound there: an area unit
+/// keeps the bound where it can deliver anything (the exact zero tests of [`importance`]) and
+/// gets 0 elsewhere; a delta light gets its own importance (its cone and beam tests).
+#[inline(always)]
+fn tree_leaf(b: &Bounds, x: Vec3A, n: Option<Vec3A>, bound: f32) -> f32 {
+    match *b {
+        Bounds::Area {
+            centre,
+            normal,
+            ref corners,
+            power,
+            ..
+        } => match area_front(centre, normal, corners, x, n) {
+            Some(_) if power > 0.0 => bound,
+            _ => 0.0,
+        },
+        _ => importance(b, x, n),
+    }
+}
+
 /// Estimated irradiance a unit delivers at `x` (normal `n`; scalar irradiance without one);
 /// exactly 0 only where it delivers none.
 #[inline]
@@ -446,18 +500,9 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
             corners,
             power,
         } => {
-            // Behind (or in) the one-sided emitter's plane: every point of it faces away.
-            let front = (x - centre).dot(normal);
-            if front <= 0.0 {
+            let Some(front) = area_front(centre, normal, &corners, x, n) else {
                 return 0.0;
-            }
-            // Entirely below the receiver's tangent plane (linear in the light point, so the
-            // corners decide for the whole polygon).
-            if let Some(n) = n
-                && corners.iter().all(|c| (*c - x).dot(n) <= 0.0)
-            {
-                return 0.0;
-            }
+            };
             let to = centre - x;
             let d2 = to.length_squared();
             let d = d2.sqrt();
@@ -494,249 +539,5 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn quad_light(y: f32, z: f32, emission: Vec3A) -> (Vec<AreaTri>, Parallelogram) {
-        // 1 m × 1 m at height y, centred on (0, y, z), facing down.
-        let o = Vec3A::new(-0.5, y, z - 0.5);
-        let e1 = Vec3A::new(1.0, 0.0, 0.0);
-        let e2 = Vec3A::new(0.0, 0.0, 1.0);
-        let n = e1.cross(e2).normalize(); // −y
-        let tri = |v0: Vec3A, a: Vec3A, b: Vec3A| AreaTri {
-            v0,
-            e1: a - v0,
-            e2: b - v0,
-            n,
-            area: 0.5,
-            emission,
-            texture: u32::MAX,
-            scale: emission,
-            uv: [glam::Vec2::ZERO, glam::Vec2::X, glam::Vec2::Y],
-        };
-        (
-            vec![tri(o, o + e1, o + e2), tri(o + e1 + e2, o + e2, o + e1)],
-            Parallelogram { o, e1, e2 },
-        )
-    }
-
-    fn two_rooms() -> LightPicker {
-        let (mut area, q0) = quad_light(3.0, 0.0, Vec3A::ONE);
-        let (b, q1) = quad_light(3.0, -6.0, Vec3A::ONE);
-        area.extend(b);
-        LightPicker::build(&area, &[0, 0, 1, 1], &[q0, q1], &[], None, 10.0)
-    }
-
-    #[test]
-    fn the_near_light_gets_most_of_the_choices_and_probabilities_sum_to_one() {
-        let p = two_rooms();
-        assert!(p.is_spatial());
-        assert_eq!(p.units.len(), 2);
-        let x = Vec3A::new(0.3, 0.0, -0.5);
-        let n = Some(Vec3A::Y);
-        let (p0, p1) = (p.prob(0, x, n), p.prob(1, x, n));
-        assert!((p0 + p1 - 1.0).abs() < 1e-6, "{p0} + {p1}");
-        assert!(p0 > 0.8, "near light only gets {p0}");
-        // pick agrees with prob, and u sweeps across both units in order.
-        let (k, pk) = p.pick(x, n, 0.1).unwrap();
-        assert_eq!((k, pk), (0, p0));
-        let (k, pk) = p.pick(x, n, 0.999).unwrap();
-        assert_eq!((k, pk), (1, p1));
-    }
-
-    #[test]
-    fn units_that_cannot_contribute_get_nothing() {
-        let p = two_rooms();
-        // Above both lights: behind their emitting side.
-        assert!(p.pick(Vec3A::new(0.0, 4.0, 0.0), None, 0.5).is_none());
-        // A floor facing down sees neither light.
-        assert!(
-            p.pick(Vec3A::new(0.0, 0.0, 0.0), Some(-Vec3A::Y), 0.5)
-                .is_none()
-        );
-        // A wall at z = -3 facing +z sees only the light at z = 0.
-        let x = Vec3A::new(0.0, 1.0, -3.0);
-        assert_eq!(p.prob(1, x, Some(Vec3A::Z)), 0.0);
-        assert_eq!(p.prob(0, x, Some(Vec3A::Z)), 1.0);
-        // ... even at the edge of the other light's plane: one corner just above the tangent
-        // plane keeps it choosable.
-        let x = Vec3A::new(0.0, 1.0, -6.49);
-        assert!(p.prob(1, x, Some(Vec3A::Z)) > 0.0);
-    }
-
-    /// 24 quad lights facing every way, 6 points, 6 spots, a directional light and the
-    /// environment, over a 20 m box: a picker with a tree.
-    fn many_lights() -> (LightPicker, Vec<AreaTri>) {
-        let key = crate::sampler::hash_key(&[5150]);
-        let r = |i: u32| crate::sampler::SampleStream::new(key, i).next_2d();
-        let unit_dir = |i: u32| {
-            let [a, b] = r(i);
-            let z = 1.0 - 2.0 * a;
-            let s = (1.0 - z * z).max(0.0).sqrt();
-            Vec3A::new(s * (2.0 * PI * b).cos(), s * (2.0 * PI * b).sin(), z)
-        };
-        let pos = |i: u32| {
-            let ([a, b], [c, _]) = (r(i), r(i + 7777));
-            Vec3A::new(a, b, c) * 20.0 - 10.0
-        };
-        let mut area = Vec::new();
-        let mut quads = Vec::new();
-        let mut quad_of = Vec::new();
-        for k in 0..24u32 {
-            let n = unit_dir(100 + k);
-            let t = n.any_orthonormal_vector();
-            let (e1, e2) = (t * 0.5, n.cross(t) * 0.5);
-            let o = pos(200 + k);
-            let tri = |v0: Vec3A, a: Vec3A, b: Vec3A| AreaTri::new([v0, a, b], Vec3A::ONE).unwrap();
-            area.push(tri(o, o + e2, o + e1));
-            area.push(tri(o + e1 + e2, o + e1, o + e2));
-            quad_of.extend([k, k]);
-            quads.push(Parallelogram { o, e1: e2, e2: e1 });
-        }
-        let mut deltas = Vec::new();
-        for k in 0..6u32 {
-            deltas.push(DeltaLight::Point {
-                position: pos(300 + k),
-                intensity: Vec3A::splat(1.0 + k as f32),
-            });
-            deltas.push(DeltaLight::Spot {
-                position: pos(400 + k),
-                direction: unit_dir(500 + k),
-                intensity: Vec3A::splat(2.0),
-                cos_cone: 0.8,
-                cos_falloff: 0.9,
-                cone: 0.8f32.acos(),
-                inv_transition: 1.0 / (0.8f32.acos() - 0.9f32.acos()),
-            });
-        }
-        deltas.push(DeltaLight::Directional {
-            direction: -Vec3A::Y,
-            irradiance: Vec3A::splat(0.5),
-        });
-        let p = LightPicker::build(
-            &area,
-            &quad_of,
-            &quads,
-            &deltas,
-            Some(Vec3A::splat(0.1)),
-            20.0,
-        );
-        (p, area)
-    }
-
-    #[test]
-    fn the_light_tree_keeps_every_light_that_can_contribute_and_probabilities_exact() {
-        let (p, _) = many_lights();
-        assert!(p.has_tree() && p.is_spatial());
-        assert_eq!(p.units.len(), 24 + 12 + 2);
-        let key = crate::sampler::hash_key(&[61]);
-        let (mut zeros_right, mut chosen) = (0, 0);
-        let (mut kept, mut reachable) = (0.0f64, 0u32);
-        for i in 0..3000u32 {
-            let mut st = crate::sampler::SampleStream::new(key, i);
-            let [a, b] = st.next_2d();
-            let [c, d] = st.next_2d();
-            let x = Vec3A::new(a, b, c) * 24.0 - 12.0;
-            let z = 1.0 - 2.0 * d;
-            let phi = 2.0 * PI * st.next_1d();
-            let s = (1.0 - z * z).max(0.0).sqrt();
-            let n = (i % 3 != 0).then(|| Vec3A::new(s * phi.cos(), s * phi.sin(), z));
-            let probs: Vec<f32> = (0..p.units.len()).map(|k| p.prob(k, x, n)).collect();
-            let sum: f32 = probs.iter().sum();
-            let any = (0..p.units.len()).any(|k| importance(&p.bounds[k], x, n) > 0.0);
-            // A walk may end where a node's bounds reach x but none of its children's do:
-            // that share of the choices is lost (no light sample), never given to a light
-            // that cannot contribute, so the sum is at most 1.
-            assert!(sum < 1.0 + 1e-4, "Σ prob = {sum} at {x:?}");
-            if any {
-                kept += sum as f64;
-                reachable += 1;
-            } else {
-                assert_eq!(sum, 0.0);
-            }
-            for (k, &pk) in probs.iter().enumerate() {
-                let can = importance(&p.bounds[k], x, n) > 0.0;
-                // Never 0 where the light can contribute; never chosen where it cannot.
-                assert_eq!(pk > 0.0, can, "unit {k} at {x:?} n {n:?}: prob {pk}");
-                zeros_right += (!can) as u32;
-            }
-            for u in [0.0, 0.3, 0.77, 1.0 - f32::EPSILON] {
-                if let Some((k, pk)) = p.pick(x, n, u) {
-                    assert_eq!(pk, probs[k], "pick and prob agree for unit {k}");
-                    chosen += 1;
-                }
-            }
-        }
-        assert!(
-            zeros_right > 1000 && chosen > 10_000,
-            "{zeros_right} {chosen}"
-        );
-        let kept = kept / reachable as f64;
-        eprintln!("mean share of choices that reach a light: {kept:.4}");
-        // 0.933 here, where lights and receivers face every way (in a room far fewer are lost).
-        assert!(kept > 0.9, "{kept}");
-    }
-
-    #[test]
-    fn the_light_tree_chooses_in_proportion_to_its_probabilities() {
-        let (p, _) = many_lights();
-        let (x, n) = (Vec3A::new(1.0, -2.0, 0.5), Some(Vec3A::new(0.0, 1.0, 0.0)));
-        let count = 200_000u32;
-        let mut hits = vec![0u32; p.units.len()];
-        let mut lost = 0u32;
-        let key = crate::sampler::hash_key(&[62]);
-        for i in 0..count {
-            let u = crate::sampler::SampleStream::new(key, i).next_1d();
-            match p.pick(x, n, u) {
-                Some((k, _)) => hits[k] += 1,
-                None => lost += 1,
-            }
-        }
-        let lost_p = 1.0
-            - (0..p.units.len())
-                .map(|k| p.prob(k, x, n) as f64)
-                .sum::<f64>();
-        let e = lost_p * count as f64;
-        let mut chi2 = if e > 0.5 {
-            (lost as f64 - e).powi(2) / e
-        } else {
-            0.0
-        };
-        let mut dof = 0;
-        for (k, &h) in hits.iter().enumerate() {
-            let e = p.prob(k, x, n) as f64 * count as f64;
-            if e > 0.0 {
-                chi2 += (h as f64 - e).powi(2) / e;
-                dof += 1;
-            } else {
-                assert_eq!(h, 0, "unit {k} has probability 0 but was chosen");
-            }
-        }
-        // χ² with dof − 1 degrees of freedom; 0.999 quantile below dof + 4.5·√(2·dof).
-        let bound = dof as f64 + 4.5 * (2.0 * dof as f64).sqrt();
-        assert!(dof > 10 && chi2 < bound, "χ² {chi2:.1} over {dof} units");
-    }
-
-    #[test]
-    fn one_unit_goes_by_power_and_many_through_a_tree() {
-        let (area, q) = quad_light(3.0, 0.0, Vec3A::ONE);
-        let one = LightPicker::build(&area, &[0, 0], &[q], &[], None, 10.0);
-        assert!(!one.is_spatial());
-        assert_eq!(
-            one.pick(Vec3A::new(0.0, 4.0, 0.0), None, 0.3),
-            Some((0, 1.0))
-        );
-        let points: Vec<DeltaLight> = (0..=SPATIAL_MAX_UNITS)
-            .map(|i| DeltaLight::Point {
-                position: Vec3A::new(i as f32, 1.0, 0.0),
-                intensity: Vec3A::splat(1.0 + i as f32),
-            })
-            .collect();
-        let many = LightPicker::build(&[], &[], &[], &points, None, 10.0);
-        // (More than SPATIAL_MAX_UNITS now choose through a light tree.)
-        assert!(many.has_tree());
-        let total: f64 = (0..many.units.len()).map(|k| many.power_prob(k)).sum();
-        assert!((total - 1.0).abs() < 1e-12);
-        assert!(many.power_prob(SPATIAL_MAX_UNITS) > many.power_prob(0));
-    }
-}
+#[path = "light_pick_tests.rs"]
+mod tests;

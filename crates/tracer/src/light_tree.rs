@@ -3,28 +3,31 @@
 //! Lights with Adaptive Tree Splitting", 2018; the light BVH of pbrt-v4 and Blender Cycles).
 //!
 //! Every bounded light (area units, point and spot lights, textured spots, projectors) is a
-//! leaf of a binary tree. A node bounds its lights' positions (a box), the directions they
-//! emit into (a cone: axis, spread θ_o, and the emission's reach θ_e beyond it) and their
-//! summed power. From a shading point x with normal n the node's *importance* is a
-//! conservative estimate of the irradiance its lights can deliver: power / d² (d the distance
-//! to the box's centre, clamped at the box's half-diagonal), times cos θ′, the largest
-//! emission cosine any of its lights can have towards x (the angle to the axis, less the
-//! spread, less the angle the box subtends), times the largest receiver cosine towards the box
-//! (n against the direction to it, less the angle the box subtends). It is exactly 0 only
-//! where no light of the node can deliver anything: x outside every emission cone, or the whole
-//! box below x's tangent plane.
+//! leaf. A node bounds its lights' positions (a box), the directions they emit into (a cone:
+//! axis, spread θ_o, and the emission's reach θ_e beyond it) and their summed power; from a
+//! shading point its *importance* is a conservative estimate of the irradiance its lights can
+//! deliver there ([`crate::light_bounds4`]), exactly 0 only where none of them can.
+//!
+//! The tree is built binary (median splits along the longest axis of the lights' centres) and
+//! then collapsed to four children a node: each node takes its binary children and keeps
+//! opening the one with the most lights until it has four. A node's children are evaluated
+//! together, four lanes of one vector computation, so a walk over 27 lights takes two vector
+//! evaluations and a few leaves instead of ten scalar importances.
 //!
 //! Choosing walks from the root: at each node one child is taken with probability in
-//! proportion to the two children's importances, and the sample number is rescaled to stay
-//! uniform. A leaf's importance is its light's own exact one (`light_pick::importance`), so a
-//! light that cannot contribute at x is never chosen there, and one that can always keeps a
-//! positive probability (every ancestor bounds it): the estimator stays unbiased. The
+//! proportion to the children's importances, and the sample number is rescaled to stay
+//! uniform. A leaf's weight comes from the caller, given the leaf's bound: `light_pick` keeps
+//! the bound for an area light that passes its exact tests (x in front of it, part of it above
+//! x's tangent plane) and uses a delta light's own importance, so a light that cannot
+//! contribute at x is never chosen there, and one that can always keeps a positive
+//! probability (every ancestor bounds it): the estimator stays unbiased. The
 //! probability of a given light, which MIS needs at emitter hits, is the product of the branch
-//! probabilities along its path from the root, recomputed the same way.
+//! probabilities along its path from the root, recomputed the same way (the same bits).
 //!
 //! Lights without a position (directional lights and the environment) stay outside the tree
 //! and compete with its root by their own importance. Everything is a pure function of the
 //! scene and the shading point: no state, no dependence on threads.
+use crate::light_bounds4::Bounds4;
 use glam::Vec3A;
 
 /// Where a node's lights are and where they shine.
@@ -42,10 +45,6 @@ pub struct LightBounds {
     pub phi: f32,
 }
 
-/// Angles below this (in cosine terms) count as on the boundary: the exact zero tests are made
-/// a little generous so that rounding never rejects a light that reaches x.
-const SLACK: f32 = 1e-4;
-
 impl LightBounds {
     /// The bounds of both `self` and `other`.
     pub fn union(&self, other: &LightBounds) -> LightBounds {
@@ -62,93 +61,6 @@ impl LightBounds {
 
     fn centre(&self) -> Vec3A {
         0.5 * (self.lo + self.hi)
-    }
-}
-
-/// What a node's importance reads, precomputed per node: the box's bounding sphere (centre,
-/// radius) instead of its corners, and the spread's sine.
-#[derive(Clone, Copy, Debug)]
-struct Cone {
-    centre: Vec3A,
-    radius: f32,
-    axis: Vec3A,
-    cos_o: f32,
-    sin_o: f32,
-    cos_e: f32,
-    phi: f32,
-}
-
-impl Cone {
-    fn of(b: &LightBounds) -> Cone {
-        Cone {
-            centre: b.centre(),
-            radius: 0.5 * (b.hi - b.lo).length(),
-            axis: b.axis,
-            cos_o: b.cos_o,
-            sin_o: sin_of(b.cos_o),
-            cos_e: b.cos_e,
-            phi: b.phi,
-        }
-    }
-
-    /// Conservative irradiance estimate at `x` (normal `n`; none for a point that looks in
-    /// every direction). 0 only where nothing inside can reach `x`.
-    #[inline]
-    fn importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
-        let to_x = x - self.centre;
-        let d2 = to_x.length_squared();
-        let r2 = self.radius * self.radius;
-        if d2 <= r2 || d2 <= 0.0 {
-            // x inside the bounding sphere: every direction and cosine is possible.
-            return self.phi / r2.max(1e-12);
-        }
-        let inv_d = 1.0 / d2.sqrt();
-        // The cone of directions from x that meets the bounding sphere: half-angle θ_b.
-        let sin_b = (self.radius * inv_d).min(1.0);
-        let cos_b = (1.0 - sin_b * sin_b).max(0.0).sqrt();
-        // Emitter side: angle from the cone's axis to x, less the spread, less θ_b.
-        let cos_p = if self.cos_o <= -1.0 {
-            1.0
-        } else {
-            let cos_w = (self.axis.dot(to_x) * inv_d).clamp(-1.0, 1.0);
-            let (sin_x, cos_x) = sub_angle(sin_of(cos_w), cos_w, self.sin_o, self.cos_o);
-            sub_angle(sin_x, cos_x, sin_b, cos_b).1
-        };
-        if cos_p < self.cos_e - SLACK {
-            return 0.0;
-        }
-        // Receiver side: the largest cosine between n and a direction into the sphere.
-        let cos_r = match n {
-            Some(n) => {
-                let cos_i = (-n.dot(to_x) * inv_d).clamp(-1.0, 1.0);
-                let c = sub_angle(sin_of(cos_i), cos_i, sin_b, cos_b).1;
-                if c < -SLACK {
-                    return 0.0;
-                }
-                c
-            }
-            None => 1.0,
-        };
-        // Floors keep a node that can contribute choosable when rounding takes a cosine to 0.
-        self.phi * cos_p.max(1e-3) * cos_r.max(1e-3) / d2.max(r2).max(1e-12)
-    }
-}
-
-#[inline]
-fn sin_of(cos: f32) -> f32 {
-    (1.0 - cos * cos).max(0.0).sqrt()
-}
-
-/// (sin, cos) of max(0, a − b) for angles a, b in [0, π] given by their sines and cosines.
-#[inline]
-fn sub_angle(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> (f32, f32) {
-    if cos_a >= cos_b {
-        (0.0, 1.0)
-    } else {
-        (
-            sin_a * cos_b - cos_a * sin_b,
-            (cos_a * cos_b + sin_a * sin_b).min(1.0),
-        )
     }
 }
 
@@ -178,26 +90,64 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
     (axis, (to + 1e-4).min(std::f32::consts::PI).cos())
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Node {
+/// A binary node while building: its bounds, how many lights it holds, and a leaf's light
+/// (`u32::MAX` for an inner node, whose first child follows it and whose second is `right`).
+struct Binary {
     bounds: LightBounds,
-    cone: Cone,
-    /// A leaf's light (an index into the caller's list), or u32::MAX for an inner node.
+    count: u32,
     light: u32,
-    /// An inner node's second child (its first follows it).
     right: u32,
 }
 
-/// A binary tree over bounded lights.
+/// A child of a node that is a leaf: its light, with this bit set.
+const LEAF: u32 = 1 << 31;
+
+/// A node of the four-wide tree.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// The children's bounds, one lane each.
+    bounds: Bounds4,
+    /// Each child: a node's index, or `LEAF | light`; `u32::MAX` past the last (there are 2
+    /// to 4, or 1 for a root over one light).
+    child: [u32; 4],
+    /// Bit j set where child j is a leaf.
+    leaves: u8,
+}
+
+impl Node {
+    /// The children's importances at (`x`, `n`): a leaf's is `leaf(light, its bound)`; 0
+    /// past the last child (lanes without a node have no power).
+    #[inline]
+    fn weights(&self, x: Vec3A, n: Option<Vec3A>, leaf: &impl Fn(usize, f32) -> f32) -> [f32; 4] {
+        let mut w = self.bounds.importance(x, n);
+        let mut leaves = self.leaves;
+        while leaves != 0 {
+            let j = leaves.trailing_zeros() as usize;
+            leaves &= leaves - 1;
+            w[j] = leaf((self.child[j] & !LEAF) as usize, w[j]);
+        }
+        w
+    }
+}
+
+/// The sum of a node's weights, in a fixed order.
+#[inline]
+fn sum(w: &[f32; 4]) -> f32 {
+    (w[0] + w[1]) + (w[2] + w[3])
+}
+
+/// A four-wide tree over bounded lights.
 pub struct LightTree {
     nodes: Vec<Node>,
-    /// Per light (the caller's index): its path from the root, bit k set where the k-th step
-    /// goes to the second child, and the path's length.
+    /// The root's own bounds (all the lights'), in lane 0.
+    top: Bounds4,
+    /// Per light (the caller's index): its path from the root, two bits a step (the child's
+    /// lane, step k in bits 2k and 2k + 1), and the path's length.
     trails: Vec<(u64, u8)>,
 }
 
-/// Bits of a trail.
-const MAX_DEPTH: usize = 64;
+/// Steps a trail holds.
+const MAX_DEPTH: usize = 32;
 
 impl LightTree {
     /// The tree over `lights` (the bounds of each, by the caller's index); `None` for none.
@@ -205,94 +155,68 @@ impl LightTree {
         if lights.is_empty() {
             return None;
         }
+        // Light indices carry the LEAF bit beside them.
+        assert!(lights.len() < LEAF as usize, "{} lights", lights.len());
+        let mut binary = Vec::with_capacity(2 * lights.len());
+        let mut order: Vec<u32> = (0..lights.len() as u32).collect();
+        split(lights, &mut order, &mut binary);
         let mut tree = LightTree {
-            nodes: Vec::with_capacity(2 * lights.len()),
+            nodes: Vec::with_capacity(lights.len()),
+            top: Bounds4::pack(&[binary[0].bounds]),
             trails: vec![(0, 0); lights.len()],
         };
-        let mut order: Vec<u32> = (0..lights.len() as u32).collect();
-        tree.split(lights, &mut order, 0, 0);
+        tree.collapse(&binary, 0, 0, 0);
         Some(tree)
     }
 
-    /// Builds the subtree over `ids` (depth `depth`, path `trail`); returns its root's index.
-    fn split(&mut self, lights: &[LightBounds], ids: &mut [u32], depth: usize, trail: u64) -> u32 {
-        let at = self.nodes.len() as u32;
-        // A median split halves the count at every level, so a path is at most
-        // ⌈log₂ n⌉ + 1 < 64 steps long and fits the trail's bits.
+    /// Adds the four-wide node over binary node `b`'s subtree (at depth `depth`, path
+    /// `trail`), and its descendants; returns its index.
+    fn collapse(&mut self, binary: &[Binary], b: u32, depth: usize, trail: u64) -> u32 {
+        // Binary median splits halve the count at every level and a node here is at least one
+        // binary level below its parent, so a path is at most ⌈log₂ n⌉ + 1 ≤ 32 steps long.
         debug_assert!(depth < MAX_DEPTH);
-        if ids.len() == 1 {
-            let k = ids[0];
-            self.trails[k as usize] = (trail, depth as u8);
-            self.nodes.push(Node {
-                bounds: lights[k as usize],
-                cone: Cone::of(&lights[k as usize]),
-                light: k,
-                right: u32::MAX,
-            });
-            return at;
+        let inner = |k: u32| binary[k as usize].light == u32::MAX;
+        let mut kids = vec![b];
+        if inner(b) {
+            kids = vec![b + 1, binary[b as usize].right];
         }
-        // Median split along the longest axis of the lights' centres; ties by index, so the
-        // tree is a function of the input order alone.
-        let (mut lo, mut hi) = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
-        for &k in ids.iter() {
-            let c = lights[k as usize].centre();
-            lo = lo.min(c);
-            hi = hi.max(c);
+        // Open the inner child with the most lights (the first of equals) until there are four.
+        while kids.len() < 4 {
+            let Some(j) = (0..kids.len())
+                .filter(|&j| inner(kids[j]))
+                .max_by_key(|&j| (binary[kids[j] as usize].count, std::cmp::Reverse(j)))
+            else {
+                break;
+            };
+            let k = kids[j];
+            kids[j] = k + 1;
+            kids.insert(j + 1, binary[k as usize].right);
         }
-        let ext = hi - lo;
-        let axis = if ext.x >= ext.y && ext.x >= ext.z {
-            0
-        } else if ext.y >= ext.z {
-            1
-        } else {
-            2
-        };
-        ids.sort_by(|&a, &b| {
-            let (ca, cb) = (
-                lights[a as usize].centre()[axis],
-                lights[b as usize].centre()[axis],
-            );
-            ca.total_cmp(&cb).then(a.cmp(&b))
-        });
+        let bounds: Vec<LightBounds> = kids.iter().map(|&k| binary[k as usize].bounds).collect();
+        let at = self.nodes.len() as u32;
         self.nodes.push(Node {
-            bounds: lights[ids[0] as usize],
-            cone: Cone::of(&lights[ids[0] as usize]),
-            light: u32::MAX,
-            right: 0,
+            bounds: Bounds4::pack(&bounds),
+            child: [u32::MAX; 4],
+            leaves: 0,
         });
-        let mid = ids.len() / 2;
-        let (left_ids, right_ids) = ids.split_at_mut(mid);
-        let left = self.split(lights, left_ids, depth + 1, trail);
-        let right = self.split(lights, right_ids, depth + 1, trail | (1 << depth));
-        let bounds = self.nodes[left as usize]
-            .bounds
-            .union(&self.nodes[right as usize].bounds);
-        self.nodes[at as usize].bounds = bounds;
-        self.nodes[at as usize].cone = Cone::of(&bounds);
-        self.nodes[at as usize].right = right;
+        for (j, &k) in kids.iter().enumerate() {
+            let path = trail | (j as u64) << (2 * depth);
+            let child = if inner(k) {
+                self.collapse(binary, k, depth + 1, path)
+            } else {
+                let light = binary[k as usize].light;
+                self.trails[light as usize] = (path, depth as u8 + 1);
+                self.nodes[at as usize].leaves |= 1 << j;
+                LEAF | light
+            };
+            self.nodes[at as usize].child[j] = child;
+        }
         at
     }
 
     /// The root's importance at (`x`, `n`) (all the lights' bounds together).
     pub fn root_importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
-        self.nodes[0].cone.importance(x, n)
-    }
-
-    /// Importance of node `i` at (`x`, `n`): a leaf's from `leaf(light)`, the light's own.
-    #[inline]
-    fn node_importance(
-        &self,
-        i: u32,
-        x: Vec3A,
-        n: Option<Vec3A>,
-        leaf: &impl Fn(usize) -> f32,
-    ) -> f32 {
-        let node = &self.nodes[i as usize];
-        if node.light != u32::MAX {
-            leaf(node.light as usize)
-        } else {
-            node.cone.importance(x, n)
-        }
+        self.top.importance(x, n)[0]
     }
 
     /// Walks from the root choosing children with `u` (in [0, 1), rescaled at each step):
@@ -302,61 +226,118 @@ impl LightTree {
         x: Vec3A,
         n: Option<Vec3A>,
         mut u: f32,
-        leaf: impl Fn(usize) -> f32,
+        leaf: impl Fn(usize, f32) -> f32,
     ) -> Option<(usize, f32)> {
-        let mut i = 0u32;
+        let mut i = 0usize;
         let mut p = 1.0f32;
         loop {
-            let node = &self.nodes[i as usize];
-            if node.light != u32::MAX {
-                return Some((node.light as usize, p));
-            }
-            let (a, b) = (i + 1, node.right);
-            let wa = self.node_importance(a, x, n, &leaf);
-            let wb = self.node_importance(b, x, n, &leaf);
-            let total = wa + wb;
+            let node = &self.nodes[i];
+            let w = node.weights(x, n, &leaf);
+            let total = sum(&w);
             if total.is_nan() || total <= 0.0 {
                 return None;
             }
-            let pa = wa / total;
-            if u < pa {
-                u = (u / pa).min(ONE_BELOW);
-                p *= pa;
-                i = a;
-            } else {
-                u = ((u - pa) / (1.0 - pa)).clamp(0.0, ONE_BELOW);
-                p *= 1.0 - pa;
-                i = b;
+            // The first child whose running sum passes the target; where rounding leaves the
+            // target at or above the sum, the last child that can contribute.
+            let target = u * total;
+            let (mut lane, mut before, mut acc) = (0, 0.0f32, 0.0f32);
+            for (j, &wj) in w.iter().enumerate() {
+                if wj > 0.0 {
+                    (lane, before) = (j, acc);
+                    acc += wj;
+                    if target < acc {
+                        break;
+                    }
+                }
             }
+            p *= w[lane] / total;
+            u = ((target - before) / w[lane]).clamp(0.0, ONE_BELOW);
+            let c = node.child[lane];
+            if c & LEAF != 0 {
+                return Some(((c & !LEAF) as usize, p));
+            }
+            i = c as usize;
         }
     }
 
     /// Probability that [`LightTree::pick`] at (`x`, `n`) ends at light `k`.
-    pub fn prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>, leaf: impl Fn(usize) -> f32) -> f32 {
+    pub fn prob(
+        &self,
+        k: usize,
+        x: Vec3A,
+        n: Option<Vec3A>,
+        leaf: impl Fn(usize, f32) -> f32,
+    ) -> f32 {
         let (trail, depth) = self.trails[k];
-        let mut i = 0u32;
+        let mut i = 0usize;
         let mut p = 1.0f32;
         for step in 0..depth as usize {
-            let node = &self.nodes[i as usize];
-            let (a, b) = (i + 1, node.right);
-            let wa = self.node_importance(a, x, n, &leaf);
-            let wb = self.node_importance(b, x, n, &leaf);
-            let total = wa + wb;
-            if total.is_nan() || total <= 0.0 {
+            let node = &self.nodes[i];
+            let w = node.weights(x, n, &leaf);
+            let total = sum(&w);
+            let lane = (trail >> (2 * step) & 3) as usize;
+            if total.is_nan() || total <= 0.0 || w[lane] <= 0.0 {
                 return 0.0;
             }
-            let pa = wa / total;
-            if trail >> step & 1 == 0 {
-                p *= pa;
-                i = a;
-            } else {
-                p *= 1.0 - pa;
-                i = b;
-            }
+            p *= w[lane] / total;
+            i = node.child[lane] as usize;
         }
         p
     }
 }
 
+/// Appends the binary tree over `ids` to `nodes`, root first.
+fn split(lights: &[LightBounds], ids: &mut [u32], nodes: &mut Vec<Binary>) {
+    if ids.len() == 1 {
+        nodes.push(Binary {
+            bounds: lights[ids[0] as usize],
+            count: 1,
+            light: ids[0],
+            right: u32::MAX,
+        });
+        return;
+    }
+    // Median split along the longest axis of the lights' centres; ties by index, so the tree
+    // is a function of the input order alone.
+    let (mut lo, mut hi) = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
+    for &k in ids.iter() {
+        let c = lights[k as usize].centre();
+        lo = lo.min(c);
+        hi = hi.max(c);
+    }
+    let ext = hi - lo;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    ids.sort_by(|&a, &b| {
+        let (ca, cb) = (
+            lights[a as usize].centre()[axis],
+            lights[b as usize].centre()[axis],
+        );
+        ca.total_cmp(&cb).then(a.cmp(&b))
+    });
+    let at = nodes.len();
+    nodes.push(Binary {
+        bounds: lights[ids[0] as usize],
+        count: ids.len() as u32,
+        light: u32::MAX,
+        right: 0,
+    });
+    let (left_ids, right_ids) = ids.split_at_mut(ids.len() / 2);
+    split(lights, left_ids, nodes);
+    let right = nodes.len();
+    split(lights, right_ids, nodes);
+    nodes[at].bounds = nodes[at + 1].bounds.union(&nodes[right].bounds);
+    nodes[at].right = right as u32;
+}
+
 /// The largest f32 below 1.
 const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
+
+#[cfg(test)]
+#[path = "light_tree_tests.rs"]
+mod tests;
