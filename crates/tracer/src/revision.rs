@@ -18,4 +18,5 @@
 /// 1: the renderer up to the smooth-plastic and light-tree changes of issue 23.
 /// 2: smooth `plastic` in Mitsuba XML is a smooth coating (α 0), scenes with more than 16
 ///    lights choose them through the light tree.
-pub const RENDER_REVISION: u32 = 2;
+/// 3: the light tree is four children wide (scenes with more than 16 lights).
+pub const RENDER_REVISION: u32 = 3;
