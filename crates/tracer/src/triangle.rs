@@ -48,9 +48,12 @@ mod normal_tests {
     }
 }
 
-const SIGN: u32 = 0x8000_0000;
+/// The sign bit of an f32.
+pub(crate) const SIGN: u32 = 0x8000_0000;
 
 /// Distance along `ray` to its hit with `tri` within [tmin, tmax], or +∞. Both faces count.
+/// The reference for [`crate::tri4::Tri4::hits`], which runs this four lanes at a time.
+#[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
 #[inline(always)]
 pub fn intersect(tri: &RtTriangle, ray: &Ray) -> f32 {
     let c = tri.v0 - ray.origin;
