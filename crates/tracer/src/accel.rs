@@ -6,7 +6,7 @@
 //! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
-use crate::tri4::Tri4;
+use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
@@ -133,7 +133,7 @@ impl Accel {
             }
             let i = bvh.primitive_indices[old as usize] as usize;
             let t = kept[i];
-            packs[slot / 4].set(slot % 4, &RtTriangle::from(&tris[i]));
+            packs[slot / 4].set(slot % 4, &tris[i]);
             info.push(TriInfo {
                 ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
                     .expect("kept triangles have an area")
@@ -172,9 +172,10 @@ impl Accel {
     #[inline]
     pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
         let mut best = None;
+        let shear = Shear::new(ray);
         crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
             for_blocks(base, mask, |block, lanes| {
-                if let Some((t, lane)) = self.packs[block as usize].closest(r, lanes) {
+                if let Some((t, lane)) = self.packs[block as usize].closest(r, &shear, lanes) {
                     r.tmax = t;
                     best = Some(SlotHit {
                         t,
@@ -197,9 +198,10 @@ impl Accel {
     #[inline]
     pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
         let mut blocked = false;
+        let shear = Shear::new(ray);
         crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
             blocked = for_blocks(base, mask, |block, lanes| {
-                self.packs[block as usize].any(r, lanes)
+                self.packs[block as usize].any(r, &shear, lanes)
             });
             blocked
         });
@@ -215,12 +217,12 @@ impl Accel {
     /// The vertices of slot `slot`, in the winding the triangle was given.
     #[inline]
     pub fn vertices(&self, slot: u32) -> [Vec3A; 3] {
-        let t = self.triangle(slot);
-        [t.v0, t.v0 - t.e1, t.v0 + t.e2]
+        let t = self.packs[slot as usize / 4].get(slot as usize % 4);
+        [t.v0, t.v1, t.v2]
     }
 
     fn triangle(&self, slot: u32) -> RtTriangle {
-        self.packs[slot as usize / 4].get(slot as usize % 4)
+        RtTriangle::from(&self.packs[slot as usize / 4].get(slot as usize % 4))
     }
 
     /// The obvhs structure itself (for diagnostics and the determinism tests).

@@ -1,4 +1,6 @@
-//! Ray–triangle test for the BVH's leaves: Möller–Trumbore on obvhs's [`RtTriangle`] layout
+//! Triangle helpers: normal and area, and the scalar Möller–Trumbore test that the BVH's
+//! leaves used before their watertight four-lane test ([`crate::tri4`]), kept as the reference
+//! the tests compare that with. Möller–Trumbore on obvhs's [`RtTriangle`] layout
 //! (v0, e1 = v0 − v1, e2 = v2 − v0, ng = e1 × e2), with the division deferred to accepted hits.
 //!
 //! obvhs's `RtTriangle::intersect` computes 1/det before it knows whether the ray hits, so

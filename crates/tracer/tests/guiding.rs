@@ -31,10 +31,13 @@ fn builtin_view(name: &str, w: u32, h: u32) -> (SceneData, View) {
 
 #[test]
 fn guiding_off_keeps_the_bits_of_the_renderer_before_guiding() {
-    // The hashes were taken at c0287d6, before `guiding/` existed.
+    // The hashes were taken at c0287d6, before `guiding/` existed, and held to 3d94600; the
+    // watertight triangle test after it (tri4.rs) moves every hit by rounding, so they were
+    // re-taken then (before: interior 0x2eeccc3f0ccd8f02, three rooms 0x9629a96366653ff, tent
+    // 0x7f437538961887f3).
     for (name, expected) in [
-        ("interior", 0x2eeccc3f0ccd8f02),
-        ("three-rooms", 0x9629a96366653ff),
+        ("interior", 0xb3a00db144de68f2),
+        ("three-rooms", 0x366713b6e48fa7b9),
     ] {
         let (data, view) = builtin_view(name, 24, 14);
         let f = render(&data, &view, &common::settings(8, 3, 8));
@@ -45,7 +48,7 @@ fn guiding_off_keeps_the_bits_of_the_renderer_before_guiding() {
     let mut s = common::settings(8, 3, 8);
     s.filter = eyeadapt_scene::PixelFilter::Tent { radius: 1.0 };
     let f = render(&data, &view, &s);
-    assert_eq!(frame_hash(&f), 0x7f437538961887f3, "tent");
+    assert_eq!(frame_hash(&f), 0x7227de9143a57fd4, "tent");
 }
 
 /// Two rooms joined by a doorway; the only light, a small lamp under the far room's ceiling,
