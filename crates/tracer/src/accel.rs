@@ -225,7 +225,9 @@ impl Accel {
         RtTriangle::from(&self.packs[slot as usize / 4].get(slot as usize % 4))
     }
 
-    /// The obvhs structure itself (for diagnostics and the determinism tests).
+    /// The obvhs structure itself (for diagnostics and the determinism tests), with the padded
+    /// slots of [`Accel`]'s layout in `primitive_base_idx` and `primitive_indices`: obvhs's own
+    /// primitive traversal and `validate` do not apply to it.
     pub fn bvh(&self) -> &CwBvh {
         &self.bvh
     }
