@@ -2,11 +2,16 @@
 //!
 //! Triangles are copied into BVH order once (obvhs reports *slots*, not triangle indices), and
 //! per-slot ids live in a parallel array, so the hot loop never looks anything up through
-//! `primitive_indices`. [`crate::geometry`] puts these together into the scene's two levels.
+//! `primitive_indices`. The copy is in blocks of four ([`Tri4`]) with each node's triangles
+//! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
+//! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
+//! together into the scene's two levels.
+use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
@@ -26,10 +31,14 @@ pub struct TriInfo {
 /// An obvhs CWBVH over triangles, in whatever space they were given (world space for a
 /// flattened scene, object space for one mesh of an instanced scene).
 pub struct Accel {
+    /// obvhs's structure with each node's `primitive_base_idx` a multiple of 4 (a padded slot),
+    /// and `primitive_indices` the input triangle of each padded slot (`u32::MAX`: padding).
     bvh: CwBvh,
-    /// Triangles in BVH slot order.
-    pub(crate) tris: Vec<RtTriangle>,
+    /// Triangles in padded slot order, slot `s` in lane `s % 4` of block `s / 4`.
+    packs: Vec<Tri4>,
+    /// Per padded slot (padding: zero normal, ids `u32::MAX`).
     pub info: Vec<TriInfo>,
+    triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
     pub degenerate: usize,
     pub bounds_min: Vec3A,
@@ -109,12 +118,22 @@ impl Accel {
             lo = Vec3A::ZERO;
             hi = Vec3A::ZERO;
         }
-        let bvh = build_cwbvh_from_tris(&tris, params, &mut Duration::default());
-        let mut info = Vec::with_capacity(bvh.primitive_indices.len());
-        let mut bvh_tris = Vec::with_capacity(bvh.primitive_indices.len());
-        for &i in &bvh.primitive_indices {
-            let t = kept[i as usize];
-            bvh_tris.push(RtTriangle::from(&tris[i as usize]));
+        let mut bvh = build_cwbvh_from_tris(&tris, params, &mut Duration::default());
+        let padded = pad_leaves(&mut bvh);
+        let mut info = Vec::with_capacity(padded.len());
+        let mut packs = vec![Tri4::default(); padded.len() / 4];
+        for (slot, &old) in padded.iter().enumerate() {
+            if old == u32::MAX {
+                info.push(TriInfo {
+                    ng: Vec3A::ZERO,
+                    instance: u32::MAX,
+                    prim: u32::MAX,
+                });
+                continue;
+            }
+            let i = bvh.primitive_indices[old as usize] as usize;
+            let t = kept[i];
+            packs[slot / 4].set(slot % 4, &tris[i]);
             info.push(TriInfo {
                 ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
                     .expect("kept triangles have an area")
@@ -123,10 +142,19 @@ impl Accel {
                 prim: t.prim,
             });
         }
+        bvh.primitive_indices = padded
+            .iter()
+            .map(|&old| match old {
+                u32::MAX => u32::MAX,
+                _ => bvh.primitive_indices[old as usize],
+            })
+            .collect();
+        let triangles = kept.len();
         Accel {
             bvh,
-            tris: bvh_tris,
+            packs,
             info,
+            triangles,
             degenerate,
             bounds_min: lo,
             bounds_max: hi,
@@ -139,17 +167,25 @@ impl Accel {
         self.closest(&Ray::new(origin, dir, 0.0, tmax), &mut Traversal::default())
     }
 
-    /// The closest hit of `ray` within its (tmin, tmax); `state` is scratch space, reused.
+    /// The closest hit of `ray` within its (tmin, tmax); `state` is scratch space, reused. Of
+    /// equally near hits in one node the highest slot wins, as in obvhs's one-by-one order.
     #[inline]
     pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
-        let tris = &self.tris;
-        crate::traverse::closest_hit(&self.bvh, *ray, state, |i, r| {
-            crate::triangle::intersect(&tris[i as usize], r)
-        })
-        .map(|h| SlotHit {
-            t: h.t,
-            slot: h.primitive_id,
-        })
+        let mut best = None;
+        let shear = Shear::new(ray);
+        crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
+            for_blocks(base, mask, |block, lanes| {
+                if let Some((t, lane)) = self.packs[block as usize].closest(r, &shear, lanes) {
+                    r.tmax = t;
+                    best = Some(SlotHit {
+                        t,
+                        slot: block * 4 + lane,
+                    });
+                }
+                false
+            })
+        });
+        best
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
@@ -161,32 +197,43 @@ impl Accel {
     /// True when no triangle blocks `ray` within its (tmin, tmax).
     #[inline]
     pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
-        let tris = &self.tris;
-        crate::traverse::unoccluded(&self.bvh, *ray, state, |i, r| {
-            crate::triangle::intersect(&tris[i as usize], r)
-        })
+        let mut blocked = false;
+        let shear = Shear::new(ray);
+        crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
+            blocked = for_blocks(base, mask, |block, lanes| {
+                self.packs[block as usize].any(r, &shear, lanes)
+            });
+            blocked
+        });
+        !blocked
     }
 
     /// Barycentric coordinates (weights of vertices 1 and 2) of `ray`'s hit with slot `slot`.
     #[inline]
     pub fn barycentric(&self, slot: u32, ray: &Ray) -> Vec2 {
-        self.tris[slot as usize].compute_barycentric(ray)
+        self.triangle(slot).compute_barycentric(ray)
     }
 
     /// The vertices of slot `slot`, in the winding the triangle was given.
     #[inline]
     pub fn vertices(&self, slot: u32) -> [Vec3A; 3] {
-        let t = &self.tris[slot as usize];
-        [t.v0, t.v0 - t.e1, t.v0 + t.e2]
+        let t = self.packs[slot as usize / 4].get(slot as usize % 4);
+        [t.v0, t.v1, t.v2]
     }
 
-    /// The obvhs structure itself (for diagnostics and the determinism tests).
+    fn triangle(&self, slot: u32) -> RtTriangle {
+        RtTriangle::from(&self.packs[slot as usize / 4].get(slot as usize % 4))
+    }
+
+    /// The obvhs structure itself (for diagnostics and the determinism tests), with the padded
+    /// slots of [`Accel`]'s layout in `primitive_base_idx` and `primitive_indices`: obvhs's own
+    /// primitive traversal and `validate` do not apply to it.
     pub fn bvh(&self) -> &CwBvh {
         &self.bvh
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.info.len()
+        self.triangles
     }
 
     /// Approximate heap size of the structure (BVH nodes, triangles, slot data).
@@ -194,7 +241,52 @@ impl Accel {
         self.bvh.nodes.len()
             * std::mem::size_of_val(&self.bvh.nodes[..].first().copied().unwrap_or_default())
             + self.bvh.primitive_indices.len() * 4
-            + self.tris.len() * std::mem::size_of::<RtTriangle>()
+            + self.packs.len() * std::mem::size_of::<Tri4>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
     }
+}
+
+/// Calls `test(block, lanes)` for each block of four slots that `mask` (bit i: slot
+/// `base + i`, `base` a multiple of 4) touches, highest first, until it returns true; returns
+/// whether one did.
+#[inline(always)]
+fn for_blocks(base: u32, mut mask: u32, mut test: impl FnMut(u32, u32) -> bool) -> bool {
+    while mask != 0 {
+        let shift = (31 - mask.leading_zeros()) & !3;
+        let lanes = (mask >> shift) & 0xf;
+        mask &= !(0xf << shift);
+        if test((base + shift) / 4, lanes) {
+            return true;
+        }
+    }
+    false
+}
+
+/// Moves each node's triangles to start at a multiple of 4 and returns, per new slot, the
+/// node's old slot there (`u32::MAX` for the padding after a node's last triangle). A node's
+/// triangles are those its leaf children name: child `c` holds `popcount(meta >> 5)` slots
+/// from `meta & 31` on.
+fn pad_leaves(bvh: &mut CwBvh) -> Vec<u32> {
+    let mut padded = Vec::with_capacity(bvh.primitive_indices.len() * 5 / 4 + 4);
+    for node in &mut bvh.nodes {
+        let count = leaf_slots(node);
+        if count == 0 {
+            continue;
+        }
+        let base = padded.len() as u32;
+        padded.extend((0..count).map(|k| node.primitive_base_idx + k));
+        padded.resize(padded.len().next_multiple_of(4), u32::MAX);
+        node.primitive_base_idx = base;
+    }
+    padded
+}
+
+/// How many slots from `primitive_base_idx` on the node's leaf children cover.
+fn leaf_slots(node: &CwBvhNode) -> u32 {
+    let (child_bits, bit_index) = node.get_child_and_index_bits(0);
+    let mut all = 0u32;
+    for c in 0..8 {
+        all |= ((child_bits >> (8 * c)) as u32 & 0xff) << ((bit_index >> (8 * c)) as u32 & 0xff);
+    }
+    32 - (all & 0x00ff_ffff).leading_zeros()
 }

@@ -43,6 +43,7 @@ mod scene_data;
 mod shadow;
 mod texture;
 mod traverse;
+mod tri4;
 mod triangle;
 
 pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};

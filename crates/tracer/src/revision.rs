@@ -19,4 +19,6 @@
 /// 2: smooth `plastic` in Mitsuba XML is a smooth coating (α 0), scenes with more than 16
 ///    lights choose them through the light tree.
 /// 3: the light tree is four children wide (scenes with more than 16 lights).
-pub const RENDER_REVISION: u32 = 3;
+/// 4: triangles are tested four at a time with a watertight test (every scene, in the last
+///    bits).
+pub const RENDER_REVISION: u32 = 4;

@@ -9,8 +9,9 @@
 //! `CwBvhNode::intersect_ray` — `tests` checks this on random rays and real nodes — with one
 //! deliberate exception: a direction component of −0.0 (obvhs's `d < 0.0` test calls it
 //! positive while its 1/d is negative, so obvhs takes the far plane as the near one and misses
-//! the node; min/max takes the right one). The traversal loop itself is obvhs's `traverse!`
-//! macro.
+//! the node; min/max takes the right one). The traversal loop ([`walk`]) is obvhs's `traverse!`
+//! macro, except that it hands over a node's hit triangles together, so that leaves can be
+//! tested four at a time ([`crate::tri4`]).
 use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
@@ -85,12 +86,65 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     node.intersect_ray(ray, oct_inv4)
 }
 
-/// The closest primitive `ray` hits (slot and distance), if any. `prim_hit(slot, ray)` is the
-/// distance to primitive `slot` within the ray's current (tmin, tmax), or +∞: a triangle test,
-/// or for a top-level structure the closest hit inside one instance.
+/// Walks the nodes `ray` enters, in obvhs's order (its `traverse!` macro, step for step), and
+/// hands each entered node's hit leaf triangles to `leaves(base, mask, ray)`: slot `base + i`
+/// for each set bit i of `mask` (at most 24 bits). `leaves` may shorten `ray.tmax` (the node
+/// tests after it see the shorter ray) and returns true to stop the walk.
 ///
 /// `state` is scratch space, reset here: reusing one per path saves zeroing obvhs's 256-byte
 /// traversal stack for every ray (a `memset` call, 2 % of a Cornell-box render).
+#[inline(always)]
+pub fn walk(
+    bvh: &CwBvh,
+    ray: &mut Ray,
+    state: &mut Traversal,
+    mut leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
+) {
+    use obvhs::faststack::FastStack;
+    if bvh.nodes.is_empty() {
+        return;
+    }
+    state.reinit(ray.direction);
+    let oct_inv4 = state.oct_inv4;
+    // (first child node, child hit bits in the top byte | imask) and (first slot, slot bits).
+    let mut nodes = UVec2::new(0, 0x8000_0000);
+    let mut prims = UVec2::ZERO;
+    loop {
+        if prims.y != 0 && leaves(prims.x, prims.y, ray) {
+            return;
+        }
+        prims = UVec2::ZERO;
+        if nodes.y & 0xff00_0000 != 0 {
+            let hits_imask = nodes.y;
+            let child_bit = 31 - hits_imask.leading_zeros();
+            nodes.y &= !(1u32 << child_bit);
+            if nodes.y & 0xff00_0000 != 0 {
+                state.stack.push(nodes);
+            }
+            let slot_index = (child_bit - 24) ^ (oct_inv4 & 0xff);
+            let relative_index = (hits_imask & !(u32::MAX << slot_index)).count_ones();
+            let node = &bvh.nodes[(nodes.x + relative_index) as usize];
+            let hit_mask = node_hits(node, ray, oct_inv4);
+            nodes = UVec2::new(
+                node.child_base_idx,
+                (hit_mask & 0xff00_0000) | node.imask as u32,
+            );
+            prims = UVec2::new(node.primitive_base_idx, hit_mask & 0x00ff_ffff);
+        } else {
+            nodes = UVec2::ZERO;
+        }
+        if prims.y == 0 && nodes.y & 0xff00_0000 == 0 {
+            if state.stack.is_empty() {
+                return;
+            }
+            nodes = state.stack.pop_fast();
+        }
+    }
+}
+
+/// The closest primitive `ray` hits (slot and distance), if any. `prim_hit(slot, ray)` is the
+/// distance to primitive `slot` within the ray's current (tmin, tmax), or +∞: for a top-level
+/// structure the closest hit inside one instance. Slots are tested highest bit first.
 #[inline(always)]
 pub fn closest_hit(
     bvh: &CwBvh,
@@ -98,27 +152,21 @@ pub fn closest_hit(
     state: &mut Traversal,
     mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> Option<RayHit> {
-    if bvh.nodes.is_empty() {
-        return None;
-    }
     let mut traverse_ray = ray;
     let mut hit = RayHit::none();
-    state.reinit(ray.direction);
-    let mut node;
-    obvhs::traverse!(
-        bvh,
-        node,
-        state,
-        node_hits(node, &traverse_ray, state.oct_inv4),
-        {
-            let t = prim_hit(state.primitive_id, &traverse_ray);
-            if t < traverse_ray.tmax {
-                hit.primitive_id = state.primitive_id;
+    walk(bvh, &mut traverse_ray, state, |base, mut mask, r| {
+        while mask != 0 {
+            let bit = 31 - mask.leading_zeros();
+            mask &= !(1 << bit);
+            let t = prim_hit(base + bit, r);
+            if t < r.tmax {
+                hit.primitive_id = base + bit;
                 hit.t = t;
-                traverse_ray.tmax = t;
+                r.tmax = t;
             }
         }
-    );
+        false
+    });
     (hit.t < ray.tmax).then_some(hit)
 }
 
@@ -131,20 +179,19 @@ pub fn unoccluded(
     state: &mut Traversal,
     mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> bool {
-    if bvh.nodes.is_empty() {
-        return true;
-    }
-    state.reinit(ray.direction);
-    let mut node;
     let mut miss = true;
-    'outer: {
-        obvhs::traverse!(bvh, node, state, node_hits(node, &ray, state.oct_inv4), {
-            if prim_hit(state.primitive_id, &ray) < ray.tmax {
+    let mut ray = ray;
+    walk(bvh, &mut ray, state, |base, mut mask, r| {
+        while mask != 0 {
+            let bit = 31 - mask.leading_zeros();
+            mask &= !(1 << bit);
+            if prim_hit(base + bit, r) < r.tmax {
                 miss = false;
-                break 'outer;
+                return true;
             }
-        });
-    }
+        }
+        false
+    });
     miss
 }
 

@@ -1,4 +1,6 @@
-//! Ray–triangle test for the BVH's leaves: Möller–Trumbore on obvhs's [`RtTriangle`] layout
+//! Triangle helpers: normal and area, and the scalar Möller–Trumbore test that the BVH's
+//! leaves used before their watertight four-lane test ([`crate::tri4`]), kept as the reference
+//! the tests compare that with. Möller–Trumbore on obvhs's [`RtTriangle`] layout
 //! (v0, e1 = v0 − v1, e2 = v2 − v0, ng = e1 × e2), with the division deferred to accepted hits.
 //!
 //! obvhs's `RtTriangle::intersect` computes 1/det before it knows whether the ray hits, so
@@ -48,9 +50,12 @@ mod normal_tests {
     }
 }
 
-const SIGN: u32 = 0x8000_0000;
+/// The sign bit of an f32.
+pub(crate) const SIGN: u32 = 0x8000_0000;
 
 /// Distance along `ray` to its hit with `tri` within [tmin, tmax], or +∞. Both faces count.
+/// The reference for [`crate::tri4::Tri4::hits`], which runs this four lanes at a time.
+#[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
 #[inline(always)]
 pub fn intersect(tri: &RtTriangle, ray: &Ray) -> f32 {
     let c = tri.v0 - ray.origin;

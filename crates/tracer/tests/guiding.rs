@@ -1,6 +1,7 @@
 //! Path guiding (`guiding/`): unbiased, deterministic, and off by default (the bits of a
-//! render without guiding are pinned in `render_revision.rs`, whose hashes for the built-in
-//! interior and three rooms were taken before `guiding/` existed).
+//! render without guiding are pinned in `render_revision.rs`; until the watertight triangle
+//! test of render revision 4 they were still the bits of the renderer before `guiding/`
+//! existed).
 use common::frame_hash;
 use eyeadapt_tracer::{Frame, Guiding, SceneData, View, render};
 
