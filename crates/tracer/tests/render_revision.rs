@@ -4,7 +4,7 @@
 //! refuse to be resumed or merged with this one) and retake the pins from the message.
 //!
 //! The cases cover the renderer's distinct paths: two built-in TOML scenes with textures,
-//! glass panes, an environment map, sun, points and spots (box and splatting filter), the
+//! glass panes, an environment map (sampled through window portals), sun, points and spots (box and splatting filter), the
 //! Cornell box, a Mitsuba XML scene (rough plastic, smooth glass, a spot), more lights than the
 //! direct choice handles (the light tree), and the eye sensor.
 mod common;
@@ -67,7 +67,7 @@ fn lit_hash(f: &Frame) -> u64 {
 /// Every case's hash at this revision, in a fixed order.
 fn hashes() -> Vec<(&'static str, u64)> {
     let mut out = Vec::new();
-    // The built-in interior and three rooms keep the hashes taken at c0287d6 (revision 1).
+    // Three rooms keeps the hash taken at c0287d6 (revision 1).
     for name in ["interior", "three-rooms", "cornell-box"] {
         let (data, view) = builtin_view(name, 24, 14);
         out.push((name, lit_hash(&render(&data, &view, &settings(8, 3, 8)))));
@@ -111,10 +111,13 @@ fn hashes() -> Vec<(&'static str, u64)> {
 #[test]
 fn the_render_revision_pins_the_bits_of_every_path_through_the_renderer() {
     let expected: [(&str, u64); 7] = [
-        ("interior", 0x2eeccc3f0ccd8f02),
+        // The interior's two pins were retaken when its scene got its window portals: its
+        // content changed (and with it its fingerprint, so a job of the old scene cannot
+        // resume), not the renderer's bits for a given scene, so the revision stays.
+        ("interior", 0x4bd8fa186737cd76),
         ("three-rooms", 0x9629a96366653ff),
         ("cornell-box", 0xabba584096af4f8a),
-        ("interior, tent filter", 0x7f437538961887f3),
+        ("interior, tent filter", 0xd68e0df2f7031237),
         ("glass-on-table.xml", 0xc536e5a41eab5781),
         ("20 point lights", 0xaf2c925e6f6e9e90),
         ("eye sensor, three-rooms", 0x72a1144bc907efb7),
