@@ -218,6 +218,10 @@ def main():
         # A sill and a mullion: thin white frames in the openings' depth.
         box("frame", (-3.1, 0.66, z0 - 0.02), (-2.9, 0.7, z0 + 1.62))
         box("frame", (-3.1, 0.7, z0 + 0.78), (-2.92, 2.5, z0 + 0.82))
+    out.append("# Light portals in the two openings (u x v = +x, the room's side): the sky is sampled")
+    out.append("# through them, not over the whole sphere. Invisible; they change no pixel's expectation.")
+    for z0 in (-5.0, -2.4):
+        out.append(f"[[portals]]\ncorner = {fmt((-3, 0.7, z0))}\nu = {fmt((0, 1.8, 0))}\nv = {fmt((0, 0, 1.6))}\n")
     out.append("# The partition (0.1 m thick) with its doorway, x in [-0.6, 0.6], y < 2.2.")
     box("wall", (-3, 0, -6.05), (-0.6, 3, -5.95))
     box("wall", (0.6, 0, -6.05), (3, 3, -5.95))

@@ -19,6 +19,8 @@ writes follows docs/scene-format.md and docs/mitsuba.md:
             20 * 4^subdivisions triangles: the surfaces differ by the facets' sagitta)
   textures  bitmap and checkerboard, to_uv = scale then translate (uv_scale, uv_offset)
   lights    point, sun (`directional`), environment (constant or `envmap`, scale)
+  portals   dropped: they steer eyeadapt's sampling of the environment and change no
+            expectation, and Mitsuba 3 has no counterpart
 Anything else (transforms, OBJ shapes, instances, spot lights, conductors, principled, ...)
 is an error naming the key, not a silent approximation. --drop-material NAME leaves out the
 shapes of that material (repeatable): see suite.py for why the interior's window panes go.
@@ -177,7 +179,7 @@ def convert(toml_path, drop=()):
         scene = tomllib.load(f)
     absolute_paths(scene, os.path.dirname(os.path.abspath(toml_path)))
     only(scene, "top level", ["camera", "render", "camera_path", "materials", "textures",
-                              "shapes", "lights", "environment"])
+                              "shapes", "lights", "environment", "portals"])
     cam = scene["camera"]
     only(cam, "[camera]", ["position", "look_at", "up", "fov_deg", "width", "height"])
     render = scene.get("render", {})

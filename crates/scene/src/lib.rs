@@ -4,7 +4,7 @@
 //! It owns triangle [`Mesh`]es in object space placed by [`Instance`]s, [`Material`]s
 //! referenced by [`MaterialId`] whose parameters are constants or [`Texture`]s ([`Param`]),
 //! delta [`Light`]s (point, spot and directional), an optional constant environment and
-//! [`EnvironmentMap`], the [`Camera`] and an
+//! [`EnvironmentMap`] with the [`Portal`]s it is sampled through, the [`Camera`] and an
 //! optional [`CameraPath`] (keyframes that [`CameraPath::sample`] turns into a [`CameraPose`]).
 //! Quads, boxes and spheres are tessellated at load time; OBJ files come in through `tobj`.
 //! Every problem found while loading is a [`Diagnostic`] carrying `file:line:col`; loading
@@ -36,6 +36,7 @@ mod mesh;
 mod mitsuba;
 mod obj;
 mod pixel_filter;
+mod portal;
 mod principled;
 mod scene;
 mod shapes;
@@ -61,6 +62,7 @@ pub use crate::mesh::{Mesh, MeshId};
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};
 pub use crate::pixel_filter::PixelFilter;
+pub use crate::portal::Portal;
 pub use crate::principled::{Principled, PrincipledThin};
 pub use crate::scene::{CutoutShadows, RenderDefaults, Scene};
 pub use crate::shapes::{box_mesh, quad_mesh, sphere_mesh};

@@ -2,7 +2,7 @@
 use crate::gltf::SceneAnimation;
 use crate::{
     Camera, CameraPath, Diagnostic, EnvironmentMap, Instance, Light, Material, MaterialId, Mesh,
-    MeshId, Rgb, Texture, TextureId, Transform,
+    MeshId, Portal, Rgb, Texture, TextureId, Transform,
 };
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -52,6 +52,8 @@ pub struct Scene {
     pub environment: Option<Rgb>,
     /// An environment map seen by rays that leave the scene (added to `environment`).
     pub environment_map: Option<EnvironmentMap>,
+    /// Openings the environment's light enters through (sampling only: not geometry).
+    pub portals: Vec<Portal>,
     /// Emission that varies over a surface: each listed material's `emission` is multiplied
     /// by its texture at every point (Mitsuba's `area` emitter with a textured `radiance`;
     /// the material's `emission` is then the texture's scale). A material appears at most once.

@@ -3,7 +3,7 @@
 use eyeadapt_scene::gltf::{Node, NodeTracks, NodeTree, Rest, SceneAnimation};
 use eyeadapt_scene::{
     Bitmap, Bsdf, Camera, CameraPath, Distribution, EnvironmentMap, FilterType, Image, Instance,
-    Keyframe, Light, Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter,
+    Keyframe, Light, Material, MaterialId, Mesh, MeshId, Orientation, Param, PixelFilter, Portal,
     Projection, RenderDefaults, Rgb, Scene, Texture, TextureId, Transform, WrapMode,
 };
 use eyeadapt_scene::{Interpolation, Track};
@@ -143,6 +143,11 @@ fn base() -> Scene {
             scale: 1.0,
             to_world: glam::Mat3::IDENTITY,
         }),
+        portals: vec![Portal {
+            corner: Vec3::new(-1.0, 0.5, 0.0),
+            u: Vec3::Y,
+            v: Vec3::Z,
+        }],
         render: RenderDefaults {
             spp: Some(16),
             max_depth: Some(8),
@@ -483,6 +488,10 @@ fn base_changes() -> Vec<(&'static str, Change)> {
         ("environment_map.to_world", |s| {
             s.environment_map.as_mut().unwrap().to_world = glam::Mat3::from_rotation_y(1.0)
         }),
+        ("portals", |s| s.portals.clear()),
+        ("portals.corner", |s| s.portals[0].corner.x -= 0.5),
+        ("portals.u", |s| s.portals[0].u = 2.0 * Vec3::Y),
+        ("portals.v", |s| s.portals[0].v = -Vec3::Z),
         ("environment", |s| s.environment = None),
         ("environment value", |s| {
             s.environment = Some(Rgb::splat(0.2))

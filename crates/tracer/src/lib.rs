@@ -1,7 +1,7 @@
 //! The renderer: a two-level obvhs CWBVH ([`Geometry`] over per-mesh [`Accel`]s), materials
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
-//! through a [`Distribution2D`]), a path tracer with next-event estimation and MIS
+//! through a [`Distribution2D`] or through light portals in the openings of an interior), a path tracer with next-event estimation and MIS
 //! ([`trace`]) whose shadow rays pass thin window panes and cut-outs (`shadow.rs`), the film
 //! with its AOVs ([`render`] → [`Frame`]) and the eye-centred hemispherical sensor
 //! ([`eye_sensor`]).
@@ -33,6 +33,7 @@ mod material;
 mod microfacet;
 mod path_state;
 mod plastic_table;
+mod portal;
 mod pplastic;
 mod principled;
 mod principled_lobes;

@@ -1,11 +1,13 @@
 //! Every light source, for next-event estimation: emissive triangles, point, spot and
-//! directional lights ([`crate::emitter`]) and the environment ([`crate::envmap`]);
+//! directional lights ([`crate::emitter`]) and the environment ([`crate::envmap`], drawn
+//! through the scene's [`crate::portal`]s where they serve the point);
 //! [`crate::light_pick`] chooses which one a shading point samples.
 use crate::beam::{self, Lookup};
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
-use crate::envmap::Environment;
+use crate::envmap::{EnvSample, Environment};
 use crate::light_pick::{LightPicker, Unit};
-use eyeadapt_scene::{Light, Texture};
+use crate::portal::{Portals, Through};
+use eyeadapt_scene::{Light, Portal, Texture};
 use glam::Vec3A;
 use std::f32::consts::PI;
 
@@ -30,6 +32,8 @@ pub struct LightSet {
     quads: Vec<Parallelogram>,
     pub deltas: Vec<DeltaLight>,
     pub env: Option<Environment>,
+    /// Openings the environment is sampled through (none: over the whole sphere).
+    portals: Portals,
     /// Chooses among quads, lone triangles, deltas and the environment.
     picker: LightPicker,
     /// For each area triangle, its unit in `picker`.
@@ -80,10 +84,17 @@ impl LightSet {
             quads,
             deltas,
             env,
+            portals: Portals::default(),
             picker,
             unit_of,
             textures: Vec::new(),
         }
+    }
+
+    /// The set with the environment sampled through `portals` where they serve the point.
+    pub fn with_portals(mut self, portals: &[Portal]) -> LightSet {
+        self.portals = Portals::new(portals);
+        self
     }
 
     pub fn is_empty(&self) -> bool {
@@ -126,10 +137,13 @@ impl LightSet {
     /// Solid-angle density with which [`LightSet::sample`] at `x` (normal `n`) picks
     /// direction `d` to the environment.
     pub fn pdf_env(&self, x: Vec3A, n: Option<Vec3A>, d: Vec3A) -> f32 {
-        match &self.env {
-            Some(env) => self.picker.prob(self.picker.units.len() - 1, x, n) * env.pdf(d),
-            None => 0.0,
-        }
+        let Some(env) = &self.env else { return 0.0 };
+        let p = if self.portals.is_empty() {
+            env.pdf(d)
+        } else {
+            self.portals.pdf(x, d).unwrap_or_else(|| env.pdf(d))
+        };
+        self.picker.prob(self.picker.units.len() - 1, x, n) * p
     }
 
     /// Samples a light for the point `x` with geometric normal `n` on the side the light must
@@ -190,7 +204,21 @@ impl LightSet {
                 })
             }
             Unit::Env => {
-                let s = self.env.as_ref()?.sample(u)?;
+                let env = self.env.as_ref()?;
+                let through = match self.portals.is_empty() {
+                    true => Through::NotServed,
+                    false => self.portals.sample(x, u),
+                };
+                let s = match through {
+                    Through::Sample(wi, pdf) => EnvSample {
+                        wi,
+                        li: env.radiance(wi),
+                        pdf,
+                    },
+                    Through::Nothing => return None,
+                    // No portals, or none serves `x`: over the whole sphere.
+                    Through::NotServed => env.sample(u)?,
+                };
                 Some(LightSample {
                     wi: s.wi,
                     dist: f32::INFINITY,

@@ -43,7 +43,8 @@ impl SceneData {
             scene.environment.map(Vec3A::from),
             scene.environment_map.as_ref(),
         );
-        let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures);
+        let lights = LightSet::build(area_lights, &scene.lights, env, radius, &scene.textures)
+            .with_portals(&scene.portals);
         let parameterisation = materials.read_parameterisation();
         let cutouts_pass = scene.cutout_shadows == CutoutShadows::Transmit;
         let see_through = materials.has_see_through(cutouts_pass);

@@ -1,7 +1,9 @@
 //! The bits of a set of small renders, pinned to [`RENDER_REVISION`]. A change to the
 //! renderer that moves any of them fails here: if the change is meant, raise `RENDER_REVISION`
 //! in `crates/tracer/src/revision.rs` (so that output directories rendered by the older binary
-//! refuse to be resumed or merged with this one) and retake the pins from the message.
+//! refuse to be resumed or merged with this one) and retake the pins from the message. An
+//! edit of a built-in scene (the interior's window portals) moves its pins but not the revision:
+//! the job hash already covers the scene through its fingerprint.
 //!
 //! The cases cover the renderer's distinct paths: two built-in TOML scenes with textures,
 //! glass panes, an environment map, sun, points and spots (box and splatting filter), the
@@ -110,10 +112,10 @@ fn hashes() -> Vec<(&'static str, u64)> {
 #[test]
 fn the_render_revision_pins_the_bits_of_every_path_through_the_renderer() {
     let expected: [(&str, u64); 7] = [
-        ("interior", 0xb3a00db144de68f2),
+        ("interior", 0xdf107894c356a4df),
         ("three-rooms", 0x366713b6e48fa7b9),
         ("cornell-box", 0x495acd280a1f51e7),
-        ("interior, tent filter", 0x7227de9143a57fd4),
+        ("interior, tent filter", 0x6f0405009d4e5c70),
         ("glass-on-table.xml", 0xe45bddff1abf1b5),
         ("20 point lights", 0xa746644c923fd3ca),
         ("eye sensor, three-rooms", 0x703a99461d0befb7),

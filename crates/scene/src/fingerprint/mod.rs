@@ -26,7 +26,8 @@ trait Feed {
 
 impl Scene {
     /// Hex SHA-256 of the scene's content: camera, materials, textures (decoded texels
-    /// included), meshes, instances, lights, environment, render defaults and camera path.
+    /// included), meshes, instances, lights, environment and its portals, render defaults and
+    /// camera path.
     /// The file it came from and its load warnings are not content and are left out.
     pub fn fingerprint(&self) -> String {
         let mut h = Sha256::new();
@@ -172,6 +173,7 @@ impl Feed for Scene {
             lights,
             environment,
             environment_map,
+            portals,
             emission_textures,
             render,
             cutout_shadows,
@@ -192,6 +194,13 @@ impl Feed for Scene {
             tag(h, 0xE7);
             m.0.feed(h);
             t.0.feed(h);
+        }
+        // Nothing for the scenes without (their fingerprints stay what they were).
+        for p in portals {
+            tag(h, 0x9F);
+            p.corner.feed(h);
+            p.u.feed(h);
+            p.v.feed(h);
         }
         render.feed(h);
         // Nothing for the default (fingerprints of TOML and glTF scenes stay what they were).

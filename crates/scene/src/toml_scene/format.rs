@@ -26,6 +26,8 @@ pub struct SceneFile {
     #[serde(default)]
     pub lights: Vec<Spanned<LightDef>>,
     pub environment: Option<Spanned<EnvironmentDef>>,
+    #[serde(default)]
+    pub portals: Vec<Spanned<PortalDef>>,
     /// Validated by the camera-path module; kept raw here.
     pub camera_path: Option<Spanned<toml::Value>>,
 }
@@ -177,4 +179,12 @@ pub struct EnvironmentDef {
     pub map: Option<Spanned<String>>,
     pub scale: Option<Spanned<f32>>,
     pub transform: Option<Spanned<TransformDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PortalDef {
+    pub corner: Option<V3>,
+    pub u: Option<V3>,
+    pub v: Option<V3>,
 }

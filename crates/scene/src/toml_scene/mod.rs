@@ -7,6 +7,7 @@ mod environment;
 mod format;
 mod light;
 mod material;
+mod portal;
 mod principled;
 mod shape;
 mod surface;
@@ -250,6 +251,20 @@ impl Ctx<'_> {
         }
         if let Some(env) = &raw.environment {
             self.environment(env, &mut scene);
+        }
+        for (i, p) in raw.portals.iter().enumerate() {
+            if let Some(portal) = self.portal(i, p) {
+                scene.portals.push(portal);
+            }
+        }
+        if let Some(p) = raw.portals.first()
+            && scene.environment.is_none()
+            && scene.environment_map.is_none()
+        {
+            self.warning(
+                p.span().start,
+                "portals without an [environment] do nothing (they only steer its sampling)",
+            );
         }
         if let Some(p) = raw.camera_path {
             scene.camera_path = self.camera_path(p);
