@@ -240,23 +240,27 @@ mod tests {
         }
     }
 
+    /// ∫ f dω over the sphere by a midpoint latitude–longitude sum of `nt` × 2`nt` cells.
+    fn over_sphere(nt: usize, f: impl Fn(Vec3A) -> f64) -> f64 {
+        let np = 2 * nt;
+        let mut sum = 0.0f64;
+        for i in 0..nt {
+            let theta = (i as f32 + 0.5) / nt as f32 * PI;
+            let (st, ct) = theta.sin_cos();
+            for j in 0..np {
+                let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
+                sum += f(Vec3A::new(st * phi.cos(), ct, st * phi.sin())) * st as f64;
+            }
+        }
+        sum * (PI as f64 / nt as f64) * (2.0 * PI as f64 / np as f64)
+    }
+
     #[test]
     fn the_density_integrates_to_one_over_the_sphere() {
         // ∫ pdf dω by a fine latitude–longitude sum: directions through no portal have 0.
         let p = windows();
         for o in [Vec3A::new(0.5, 1.2, -3.0), Vec3A::new(-2.0, 0.5, -1.0)] {
-            let (nt, np) = (1200, 2400);
-            let mut sum = 0.0f64;
-            for i in 0..nt {
-                let theta = (i as f32 + 0.5) / nt as f32 * PI;
-                let (st, ct) = theta.sin_cos();
-                for j in 0..np {
-                    let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
-                    let d = Vec3A::new(st * phi.cos(), ct, st * phi.sin());
-                    sum += p.pdf(o, d).unwrap() as f64 * st as f64;
-                }
-            }
-            let integral = sum * (PI as f64 / nt as f64) * (2.0 * PI as f64 / np as f64);
+            let integral = over_sphere(1200, |d| p.pdf(o, d).unwrap() as f64);
             assert!((integral - 1.0).abs() < 0.01, "{o}: ∫ pdf = {integral}");
         }
     }
@@ -274,20 +278,7 @@ mod tests {
             })
             .sum::<f64>()
             / n as f64;
-        let (nt, np) = (1500, 3000);
-        let mut omega = 0.0f64;
-        for i in 0..nt {
-            let theta = (i as f32 + 0.5) / nt as f32 * PI;
-            let (st, ct) = theta.sin_cos();
-            for j in 0..np {
-                let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
-                let d = Vec3A::new(st * phi.cos(), ct, st * phi.sin());
-                if p.pdf(o, d).unwrap() > 0.0 {
-                    omega += st as f64;
-                }
-            }
-        }
-        omega *= (PI as f64 / nt as f64) * (2.0 * PI as f64 / np as f64);
+        let omega = over_sphere(1500, |d| f64::from(u8::from(p.pdf(o, d).unwrap() > 0.0)));
         assert!(omega > 0.3, "the windows subtend {omega} sr");
         assert!(
             (mc - omega).abs() < 0.01 * omega,

@@ -222,21 +222,10 @@ mod tests {
     use super::*;
     use crate::accel::{Accel, InputTri};
     use crate::sampler::mix64;
+    use crate::triangle::tests::{unit, v3};
     use crate::triangle::{intersect, normal_and_area};
     use obvhs::cwbvh::Traversal;
     use obvhs::triangle::Triangle;
-
-    fn unit(r: u64) -> f32 {
-        (r >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn v3(r: u64, scale: f32) -> Vec3A {
-        Vec3A::new(
-            unit(mix64(r ^ 1)) - 0.5,
-            unit(mix64(r ^ 2)) - 0.5,
-            unit(mix64(r ^ 3)) - 0.5,
-        ) * scale
-    }
 
     /// A random triangle; every 8th has no area (a repeated vertex, or collinear vertices),
     /// every 8th is tiny and every 8th huge.

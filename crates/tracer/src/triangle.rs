@@ -81,17 +81,18 @@ pub fn intersect(tri: &RtTriangle, ray: &Ray) -> f32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::sampler::mix64;
     use glam::Vec3A;
     use obvhs::triangle::Triangle;
 
-    fn unit(r: u64) -> f32 {
+    pub(crate) fn unit(r: u64) -> f32 {
         (r >> 40) as f32 / (1u64 << 24) as f32
     }
 
-    fn v3(r: u64, scale: f32) -> Vec3A {
+    /// A pseudo-random point in the cube of side `scale` around the origin.
+    pub(crate) fn v3(r: u64, scale: f32) -> Vec3A {
         Vec3A::new(
             unit(mix64(r ^ 1)) - 0.5,
             unit(mix64(r ^ 2)) - 0.5,
