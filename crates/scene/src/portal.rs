@@ -25,8 +25,8 @@ impl Portal {
     /// Largest |cos| between `u` and `v` a portal may have (it must be a rectangle).
     pub const MAX_EDGE_COS: f32 = 1e-4;
 
-    /// Why `corner`, `u`, `v` make no portal, if they do not: a zero edge or edges that are
-    /// not at right angles.
+    /// Why edges `u`, `v` make no portal, if they do not: a zero edge or edges that are not
+    /// at right angles.
     pub fn check(u: Vec3, v: Vec3) -> Result<(), String> {
         let (lu, lv) = (u.length(), v.length());
         if !(lu > 0.0 && lv > 0.0) {

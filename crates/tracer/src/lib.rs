@@ -1,10 +1,10 @@
 //! The renderer: a two-level obvhs CWBVH ([`Geometry`] over per-mesh [`Accel`]s), materials
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
-//! through a [`Distribution2D`] or through light portals in the openings of an interior), a path tracer with next-event estimation and MIS
-//! ([`trace`]) whose shadow rays pass thin window panes and cut-outs (`shadow.rs`), the film
-//! with its AOVs ([`render`] → [`Frame`]) and the eye-centred hemispherical sensor
-//! ([`eye_sensor`]).
+//! through a [`Distribution2D`] or through light portals in the openings of an interior), a
+//! path tracer with next-event estimation and MIS ([`trace`]) whose shadow rays pass thin
+//! window panes and cut-outs (`shadow.rs`), the film with its AOVs ([`render`] → [`Frame`]) and
+//! the eye-centred hemispherical sensor ([`eye_sensor`]).
 //!
 //! Build a [`SceneData`] once from an `eyeadapt_scene::Scene`, then render any number of
 //! [`View`]s from it. Results depend only on the scene, the view and the settings, never on

@@ -154,18 +154,16 @@ pub fn closest_hit(
 ) -> Option<RayHit> {
     let mut traverse_ray = ray;
     let mut hit = RayHit::none();
-    walk(bvh, &mut traverse_ray, state, |base, mut mask, r| {
-        while mask != 0 {
-            let bit = 31 - mask.leading_zeros();
-            mask &= !(1 << bit);
-            let t = prim_hit(base + bit, r);
+    walk(bvh, &mut traverse_ray, state, |base, mask, r| {
+        each_slot(base, mask, |slot| {
+            let t = prim_hit(slot, r);
             if t < r.tmax {
-                hit.primitive_id = base + bit;
+                hit.primitive_id = slot;
                 hit.t = t;
                 r.tmax = t;
             }
-        }
-        false
+            false
+        })
     });
     (hit.t < ray.tmax).then_some(hit)
 }
@@ -181,18 +179,26 @@ pub fn unoccluded(
 ) -> bool {
     let mut miss = true;
     let mut ray = ray;
-    walk(bvh, &mut ray, state, |base, mut mask, r| {
-        while mask != 0 {
-            let bit = 31 - mask.leading_zeros();
-            mask &= !(1 << bit);
-            if prim_hit(base + bit, r) < r.tmax {
-                miss = false;
-                return true;
-            }
-        }
-        false
+    walk(bvh, &mut ray, state, |base, mask, r| {
+        let blocked = each_slot(base, mask, |slot| prim_hit(slot, r) < r.tmax);
+        miss &= !blocked;
+        blocked
     });
     miss
+}
+
+/// Calls `visit(base + i)` for each set bit i of `mask`, highest first, until it returns true;
+/// returns whether one did.
+#[inline(always)]
+fn each_slot(base: u32, mut mask: u32, mut visit: impl FnMut(u32) -> bool) -> bool {
+    while mask != 0 {
+        let bit = 31 - mask.leading_zeros();
+        mask &= !(1 << bit);
+        if visit(base + bit) {
+            return true;
+        }
+    }
+    false
 }
 
 #[cfg(test)]

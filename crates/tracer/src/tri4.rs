@@ -12,8 +12,8 @@
 //! [`crate::triangle::intersect`], used before) derives one of the three coordinates from the
 //! other two and the determinant, and let 1373 of 10 000 rays aimed at such edges of a grid
 //! through (`tests`). Its cost: 637.8M instructions for the Cornell-box benchmark against
-//! 602.5M for Möller–Trumbore four lanes at a time (661.6M one at a time). Plain SSE2 arithmetic, no FMA, so every x86-64
-//! machine gets the same bits; [`Tri4::hit_lane`] is the same arithmetic one lane at a time.
+//! 602.5M for Möller–Trumbore four lanes at a time (661.6M one at a time). Plain SSE2
+//! arithmetic, no FMA, so every x86-64 machine gets the same bits; [`Tri4::hit_lane`] is the same arithmetic one lane at a time.
 use crate::triangle::SIGN;
 use glam::Vec3A;
 use obvhs::ray::Ray;

@@ -54,7 +54,8 @@ mod normal_tests {
 pub(crate) const SIGN: u32 = 0x8000_0000;
 
 /// Distance along `ray` to its hit with `tri` within [tmin, tmax], or +∞. Both faces count.
-/// The reference for [`crate::tri4::Tri4::hits`], which runs this four lanes at a time.
+/// The leaves' test before the watertight [`crate::tri4::Tri4::hits`] replaced it, kept as the
+/// reference its tests compare with.
 #[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
 #[inline(always)]
 pub fn intersect(tri: &RtTriangle, ray: &Ray) -> f32 {
