@@ -245,3 +245,64 @@ fn one_unit_goes_by_power_and_many_through_a_tree() {
     assert!((total - 1.0).abs() < 1e-12);
     assert!(many.power_prob(SPATIAL_MAX_UNITS) > many.power_prob(0));
 }
+
+#[test]
+fn portals_scale_the_environment_by_the_sky_they_show() {
+    use eyeadapt_scene::Portal;
+    // A window 1 m × 1 m in the wall z = 0 facing −z (u × v); the room is z < 0.
+    let window = [Portal {
+        corner: glam::Vec3::new(2.0, 1.0, 0.0),
+        u: glam::Vec3::new(0.0, 1.0, 0.0),
+        v: glam::Vec3::new(1.0, 0.0, 0.0),
+    }];
+    let portals = crate::portal::Portals::new(&window);
+    let (area, q) = quad_light(3.0, -6.0, Vec3A::ONE);
+    let env = Some(Vec3A::splat(0.5));
+    let open = LightPicker::build(&area, &[0, 0], &[q], &[], env, 10.0);
+    let (area, q) = quad_light(3.0, -6.0, Vec3A::ONE);
+    let room = LightPicker::build(&area, &[0, 0], &[q], &[], env, 10.0).through(portals.clone());
+    let (x, n) = (Vec3A::new(0.0, 0.0, -4.0), Some(Vec3A::Y));
+    let env_unit = open.units.len() - 1;
+    let (a, b) = (open.prob(env_unit, x, n), room.prob(env_unit, x, n));
+    // The environment's importance shrinks by the window's share of the sky.
+    let share = portals.sky_share(x);
+    assert!(share < 0.05, "{share}");
+    let (wa, wb) = (a / (1.0 - a), b / (1.0 - b));
+    assert!((wb / wa - share).abs() < 1e-3 * share, "{wa} {wb} {share}");
+    // pick and prob agree, and every unit keeps its probability where it can contribute.
+    for u in [0.0, 0.01, 0.5, 0.99] {
+        let (k, p) = room.pick(x, n, u).unwrap();
+        assert_eq!(p, room.prob(k, x, n));
+    }
+    assert!(b > 0.0 && (room.prob(0, x, n) + b - 1.0).abs() < 1e-6);
+    // Outdoors (no portal serves the point) nothing changes, bit for bit.
+    let out = Vec3A::new(0.0, 0.0, 4.0);
+    assert_eq!(
+        open.prob(env_unit, out, None),
+        room.prob(env_unit, out, None)
+    );
+}
+
+#[test]
+fn portals_scale_the_environment_beside_a_light_tree() {
+    use eyeadapt_scene::Portal;
+    let (p, _) = many_lights();
+    let window = [Portal {
+        corner: glam::Vec3::new(-1.0, -1.0, 12.0),
+        u: glam::Vec3::new(0.0, 2.0, 0.0),
+        v: glam::Vec3::new(2.0, 0.0, 0.0),
+    }];
+    let (q, _) = many_lights();
+    let q = q.through(crate::portal::Portals::new(&window));
+    let env = p.units.iter().position(|u| *u == Unit::Env).unwrap();
+    let (x, n) = (Vec3A::new(1.0, -2.0, 0.5), Some(Vec3A::new(0.0, 0.0, 1.0)));
+    let (a, b) = (p.prob(env, x, n), q.prob(env, x, n));
+    assert!(b > 0.0 && b < 0.5 * a, "{a} {b}");
+    let sum: f32 = (0..q.units.len()).map(|k| q.prob(k, x, n)).sum();
+    assert!(sum <= 1.0 + 1e-4, "{sum}");
+    for u in [0.0, 0.3, 0.999] {
+        if let Some((k, pk)) = q.pick(x, n, u) {
+            assert_eq!(pk, q.prob(k, x, n));
+        }
+    }
+}

@@ -94,6 +94,7 @@ impl LightSet {
     /// The set with the environment sampled through `portals` where they serve the point.
     pub fn with_portals(mut self, portals: &[Portal]) -> LightSet {
         self.portals = Portals::new(portals);
+        self.picker = self.picker.through(self.portals.clone());
         self
     }
 

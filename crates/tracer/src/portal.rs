@@ -124,6 +124,18 @@ impl Portals {
             .sum()
     }
 
+    /// The share of the whole sky the portals let reach `o`: their approximate solid angle
+    /// (the choice weights) over π, at most 1; 1 where none serves `o` (the environment is
+    /// then sampled over the sphere). The light choice scales the environment's importance
+    /// by it ([`crate::light_pick`]).
+    #[inline]
+    pub fn sky_share(&self, o: Vec3A) -> f32 {
+        match self.total(o) {
+            t if t > 0.0 => (t / std::f32::consts::PI).min(1.0),
+            _ => 1.0,
+        }
+    }
+
     /// A direction from `o` through a portal, drawn with `u`.
     pub fn sample(&self, o: Vec3A, u: [f32; 2]) -> Through {
         let total = self.total(o);
@@ -212,6 +224,28 @@ mod tests {
             let b = ((i as f32 + 0.5) / n as f32 + off * 0.37).fract();
             [a, b]
         })
+    }
+
+    #[test]
+    fn the_sky_share_is_the_openings_solid_angle_over_pi() {
+        let p = windows();
+        // 8 m from the windows' wall: each 1.8 × 1.6 m opening subtends about area × cos / d².
+        let o = Vec3A::new(5.0, 1.6, -3.7);
+        let omega = |c: Vec3A| {
+            let d = o - c;
+            1.8 * 1.6 * (d.x / d.length()) / d.length_squared()
+        };
+        let want = (omega(Vec3A::new(-3.0, 1.6, -4.2)) + omega(Vec3A::new(-3.0, 1.6, -1.6))) / PI;
+        let got = p.sky_share(o);
+        assert!((got - want).abs() < 1e-4 * want, "{got} vs {want}");
+        // Nearer windows show more sky, never more than the whole of it (a portal's weight
+        // keeps the distance at least its size: at its face, 1 of the π).
+        let near = p.sky_share(Vec3A::new(0.0, 1.6, -3.7));
+        let at = p.sky_share(Vec3A::new(-2.99, 1.6, -4.2));
+        assert!(got < near && near < at && at <= 1.0, "{got} {near} {at}");
+        // Outdoors no portal serves the point: the whole sky.
+        assert_eq!(p.sky_share(Vec3A::new(-4.0, 1.6, -3.7)), 1.0);
+        assert_eq!(Portals::new(&[]).sky_share(o), 1.0);
     }
 
     #[test]

@@ -21,4 +21,6 @@
 /// 3: the light tree is four children wide (scenes with more than 16 lights).
 /// 4: triangles are tested four at a time with a watertight test (every scene, in the last
 ///    bits).
-pub const RENDER_REVISION: u32 = 4;
+/// 5: behind light portals the light choice weighs the environment by the share of the sky
+///    the portals show (scenes with `[[portals]]`).
+pub const RENDER_REVISION: u32 = 5;
