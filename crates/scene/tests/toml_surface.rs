@@ -284,3 +284,24 @@ fn bad_surface_and_light_keys_are_errors_at_the_key() {
         assert!(e.contains(msg), "{material} {rest}: {e}");
     }
 }
+
+#[test]
+fn portals_warn_only_without_an_environment_or_a_sun() {
+    let dir = folder("portal-warning");
+    let portal =
+        "[[portals]]\ncorner = [0.0, 0.0, 1.0]\nu = [1.0, 0.0, 0.0]\nv = [0.0, 1.0, 0.0]\n";
+    let sun =
+        "[[lights]]\ntype = \"sun\"\ndirection = [0.0, -1.0, 0.0]\nirradiance = [1.0, 1.0, 1.0]\n";
+    let sky = "[environment]\nradiance = [0.5, 0.5, 0.5]\n";
+    let m = "type = \"diffuse\"\nreflectance = [0.5, 0.5, 0.5]";
+    let warned = |rest: &str| {
+        let s = toml(&dir, "", m, rest).unwrap();
+        s.warnings
+            .iter()
+            .filter(|w| w.message.contains("portals without"))
+            .count()
+    };
+    assert_eq!(warned(portal), 1);
+    assert_eq!(warned(&format!("{sun}{portal}")), 0);
+    assert_eq!(warned(&format!("{sky}{portal}")), 0);
+}

@@ -26,8 +26,12 @@
 //! (their approximate solid angle over π): in a room lit through two windows the sky is a few
 //! per cent of the hemisphere, and weighing it as the whole one gave it most of the shadow
 //! rays the sun and the lamps needed (the interior's MSE −24 % at equal samples, no cost;
-//! docs/benchmarks/portals.md). Points no portal serves, and scenes without portals, keep the
-//! sky's full weight, bit for bit.
+//! docs/benchmarks/portals.md). Likewise a directional light (the sun) can reach a point the
+//! portals serve only along a ray through one of them: where its direction crosses none, its
+//! importance is multiplied by [`BEHIND_PORTALS`] (not 0: portals need not cover every
+//! opening, and a delta light has no MIS to fall back on), so a room in shade stops spending
+//! shadow rays on a sun that only lights two patches of its floor (a further −24 % MSE).
+//! Points no portal serves, and scenes without portals, keep the full weights, bit for bit.
 use crate::beam::Lookup;
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::light_tree::{LightBounds, LightTree};
@@ -37,6 +41,10 @@ use std::f32::consts::PI;
 
 /// Most units for which the choice depends on the shading point.
 pub const SPATIAL_MAX_UNITS: usize = 16;
+
+/// The factor of a directional light's importance at a point the portals serve when its
+/// direction crosses none of them.
+pub const BEHIND_PORTALS: f32 = 1.0 / 16.0;
 
 /// What a unit is, as indices into the light set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -81,6 +89,13 @@ pub struct LightPicker {
     tree: Option<Tree>,
     /// The openings the environment is seen through (none: the whole sky).
     portals: Portals,
+}
+
+/// A point behind portals: the share of the sky they show there (see the module docs).
+#[derive(Clone, Copy)]
+struct Behind<'a> {
+    portals: &'a Portals,
+    sky: f32,
 }
 
 /// The light tree of a picker and how its leaves map to units.
@@ -225,15 +240,13 @@ impl LightPicker {
         self
     }
 
-    /// The factor of the environment's importance at `x`: the portals' share of the sky
-    /// there (1 without portals, or where none serves `x`).
+    /// What the portals say at `x` (nothing without portals).
     #[inline]
-    fn sky(&self, x: Vec3A) -> f32 {
-        if self.portals.is_empty() {
-            1.0
-        } else {
-            self.portals.sky_share(x)
-        }
+    fn behind(&self, x: Vec3A) -> Option<Behind<'_>> {
+        (!self.portals.is_empty()).then(|| Behind {
+            portals: &self.portals,
+            sky: self.portals.sky_share(x),
+        })
     }
 
     /// Whether the choice depends on the shading point.
@@ -267,7 +280,7 @@ impl LightPicker {
             return None;
         }
         if let Some(t) = &self.tree {
-            return t.pick(&self.bounds, (x, n, self.sky(x)), u);
+            return t.pick(&self.bounds, (x, n, self.behind(x)), u);
         }
         if !self.spatial {
             let target = u as f64 * self.total;
@@ -302,7 +315,7 @@ impl LightPicker {
     #[inline]
     pub fn prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
         if let Some(t) = &self.tree {
-            return t.prob(&self.bounds, k, (x, n, self.sky(x)));
+            return t.prob(&self.bounds, k, (x, n, self.behind(x)));
         }
         if !self.spatial {
             return self.power_prob(k) as f32;
@@ -314,10 +327,10 @@ impl LightPicker {
 
     /// Every unit's importance at (`x`, `n`) into `w`; returns their sum.
     fn importances(&self, x: Vec3A, n: Option<Vec3A>, w: &mut [f32; SPATIAL_MAX_UNITS]) -> f32 {
-        let sky = self.sky(x);
+        let behind = self.behind(x);
         let mut total = 0.0;
         for (wk, b) in w.iter_mut().zip(&self.bounds) {
-            *wk = unit_importance(b, x, n, sky);
+            *wk = unit_importance(b, x, n, behind);
             total += *wk;
         }
         total
@@ -352,7 +365,11 @@ impl Tree {
 
     /// The root's importance (its light's own when the tree is one leaf) and the unbounded
     /// units' at (`x`, `n`) with the sky's share `sky`, and their sum.
-    fn top(&self, bounds: &[Bounds], (x, n, sky): (Vec3A, Option<Vec3A>, f32)) -> (f32, f32) {
+    fn top(
+        &self,
+        bounds: &[Bounds],
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+    ) -> (f32, f32) {
         let root = if self.unit.len() == 1 {
             importance(&bounds[self.unit[0] as usize], x, n)
         } else {
@@ -361,7 +378,7 @@ impl Tree {
         let rest: f32 = self
             .unbounded
             .iter()
-            .map(|&k| unit_importance(&bounds[k as usize], x, n, sky))
+            .map(|&k| unit_importance(&bounds[k as usize], x, n, behind))
             .sum();
         (root, root + rest)
     }
@@ -369,7 +386,7 @@ impl Tree {
     fn pick(
         &self,
         bounds: &[Bounds],
-        (x, n, sky): (Vec3A, Option<Vec3A>, f32),
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
         u: f32,
     ) -> Option<(usize, f32)> {
         let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
@@ -379,7 +396,7 @@ impl Tree {
             let (i, p) = self.tree.pick(x, n, u, leaf)?;
             return Some((self.unit[i] as usize, p));
         }
-        let (root, total) = self.top(bounds, (x, n, sky));
+        let (root, total) = self.top(bounds, (x, n, behind));
         if total.is_nan() || total <= 0.0 {
             return None;
         }
@@ -392,7 +409,7 @@ impl Tree {
         let mut acc = root;
         let mut last = None;
         for &k in &self.unbounded {
-            let w = unit_importance(&bounds[k as usize], x, n, sky);
+            let w = unit_importance(&bounds[k as usize], x, n, behind);
             if w > 0.0 {
                 acc += w;
                 last = Some((k as usize, w / total));
@@ -408,28 +425,42 @@ impl Tree {
         })
     }
 
-    fn prob(&self, bounds: &[Bounds], k: usize, (x, n, sky): (Vec3A, Option<Vec3A>, f32)) -> f32 {
+    fn prob(
+        &self,
+        bounds: &[Bounds],
+        k: usize,
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+    ) -> f32 {
         let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
         if self.unbounded.is_empty() {
             return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
         }
-        let (root, total) = self.top(bounds, (x, n, sky));
+        let (root, total) = self.top(bounds, (x, n, behind));
         if total.is_nan() || total <= 0.0 {
             return 0.0;
         }
         match self.leaf[k] {
-            u32::MAX => unit_importance(&bounds[k], x, n, sky) / total,
+            u32::MAX => unit_importance(&bounds[k], x, n, behind) / total,
             i => root / total * self.tree.prob(i as usize, x, n, leaf),
         }
     }
 }
 
-/// [`importance`], the environment's scaled by the share `sky` of the sky it can send.
+/// [`importance`], behind portals with the environment's scaled by the share of the sky
+/// they show and a directional light's by whether its direction crosses one.
 #[inline]
-fn unit_importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>, sky: f32) -> f32 {
+fn unit_importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>, behind: Option<Behind>) -> f32 {
+    let w = importance(b, x, n);
+    let Some(at) = behind else { return w };
     match b {
-        Bounds::Env { .. } => importance(b, x, n) * sky,
-        _ => importance(b, x, n),
+        Bounds::Env { .. } => w * at.sky,
+        Bounds::Delta(DeltaLight::Directional { direction, .. }) => {
+            match at.portals.lets_through(x, -*direction) {
+                Some(false) => w * BEHIND_PORTALS,
+                _ => w,
+            }
+        }
+        _ => w,
     }
 }
 

@@ -306,3 +306,45 @@ fn portals_scale_the_environment_beside_a_light_tree() {
         }
     }
 }
+
+#[test]
+fn behind_portals_the_sun_keeps_its_weight_only_where_its_direction_crosses_one() {
+    use eyeadapt_scene::Portal;
+    // A window 1 m × 1 m in the wall z = 0 facing −z, x in [2, 3], y in [1, 2]; the sun
+    // shines through it along (−1, −1, −2)/√6 (towards the room).
+    let window = [Portal {
+        corner: glam::Vec3::new(2.0, 1.0, 0.0),
+        u: glam::Vec3::new(0.0, 1.0, 0.0),
+        v: glam::Vec3::new(1.0, 0.0, 0.0),
+    }];
+    let direction = Vec3A::new(-1.0, -1.0, -2.0).normalize();
+    let sun = [DeltaLight::Directional {
+        direction,
+        irradiance: Vec3A::splat(5.0),
+    }];
+    let build = || {
+        let (area, q) = quad_light(3.0, -6.0, Vec3A::ONE);
+        LightPicker::build(&area, &[0, 0], &[q], &sun, None, 10.0)
+    };
+    let open = build();
+    let room = build().through(crate::portal::Portals::new(&window));
+    let n = Some(Vec3A::Y);
+    // On the floor (y = 0) the window's sunlight lands 1.5 m in from x ∈ [2, 3] and so on:
+    // the point (2, 0, −3) sees the sun through it, (−2, 0, −3) does not.
+    let lit = Vec3A::new(1.5, 0.0, -3.0);
+    let shade = Vec3A::new(-2.0, 0.0, -3.0);
+    assert_eq!(
+        crate::portal::Portals::new(&window).lets_through(lit, -direction),
+        Some(true)
+    );
+    assert_eq!(open.prob(1, lit, n), room.prob(1, lit, n), "lit: unchanged");
+    let odds = |p: &LightPicker| p.prob(1, shade, n) / p.prob(0, shade, n);
+    let ratio = odds(&room) / odds(&open);
+    assert!((ratio - BEHIND_PORTALS).abs() < 1e-4, "{ratio}");
+    // Still choosable where the portals say no (they may not cover every opening).
+    assert!(room.prob(1, shade, n) > 0.0);
+    for u in [0.0, 0.02, 0.5, 0.999] {
+        let (k, p) = room.pick(shade, n, u).unwrap();
+        assert_eq!(p, room.prob(k, shade, n));
+    }
+}

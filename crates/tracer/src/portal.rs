@@ -136,6 +136,22 @@ impl Portals {
         }
     }
 
+    /// Whether light from unit direction `wi` can reach `o` through the portals: `None` where
+    /// none serves `o` (or there are none), else whether the ray from `o` along `wi` crosses
+    /// one that does. The light choice weighs a directional light by it
+    /// ([`crate::light_pick`]).
+    #[inline]
+    pub fn lets_through(&self, o: Vec3A, wi: Vec3A) -> Option<bool> {
+        let mut served = false;
+        for r in self.rects.iter().filter(|r| r.serves(o)) {
+            if r.crossing(o, wi).is_some() {
+                return Some(true);
+            }
+            served = true;
+        }
+        served.then_some(false)
+    }
+
     /// A direction from `o` through a portal, drawn with `u`.
     pub fn sample(&self, o: Vec3A, u: [f32; 2]) -> Through {
         let total = self.total(o);
@@ -246,6 +262,36 @@ mod tests {
         // Outdoors no portal serves the point: the whole sky.
         assert_eq!(p.sky_share(Vec3A::new(-4.0, 1.6, -3.7)), 1.0);
         assert_eq!(Portals::new(&[]).sky_share(o), 1.0);
+    }
+
+    #[test]
+    fn a_direction_gets_through_where_its_ray_crosses_a_serving_portal() {
+        let p = windows();
+        // Towards the first window's middle (x = −3, y 0.7..2.5, z −5..−3.4), and past it.
+        let o = Vec3A::new(1.0, 1.0, -4.2);
+        let to = |t: Vec3A| (t - o).normalize();
+        assert_eq!(
+            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -4.2))),
+            Some(true)
+        );
+        assert_eq!(
+            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -2.0))),
+            Some(true)
+        );
+        assert_eq!(
+            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -3.0))),
+            Some(false)
+        );
+        assert_eq!(
+            p.lets_through(o, to(Vec3A::new(-3.0, 3.0, -4.2))),
+            Some(false)
+        );
+        // Away from the wall, and straight up: no portal on the way.
+        assert_eq!(p.lets_through(o, Vec3A::X), Some(false));
+        assert_eq!(p.lets_through(o, Vec3A::Y), Some(false));
+        // Outdoors, or without portals: not served, nothing known.
+        assert_eq!(p.lets_through(Vec3A::new(-4.0, 1.0, -4.2), Vec3A::X), None);
+        assert_eq!(Portals::new(&[]).lets_through(o, -Vec3A::X), None);
     }
 
     #[test]

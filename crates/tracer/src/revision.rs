@@ -23,4 +23,6 @@
 ///    bits).
 /// 5: behind light portals the light choice weighs the environment by the share of the sky
 ///    the portals show (scenes with `[[portals]]`).
-pub const RENDER_REVISION: u32 = 5;
+/// 6: behind light portals a directional light's importance drops where its direction
+///    crosses no portal.
+pub const RENDER_REVISION: u32 = 6;

@@ -257,13 +257,18 @@ impl Ctx<'_> {
                 scene.portals.push(portal);
             }
         }
+        let sun = scene
+            .lights
+            .iter()
+            .any(|l| matches!(l, crate::Light::Directional { .. }));
         if let Some(p) = raw.portals.first()
             && scene.environment.is_none()
             && scene.environment_map.is_none()
+            && !sun
         {
             self.warning(
                 p.span().start,
-                "portals without an [environment] do nothing (they only steer its sampling)",
+                "portals without an [environment] or a sun do nothing (they only steer their sampling)",
             );
         }
         if let Some(p) = raw.camera_path {
