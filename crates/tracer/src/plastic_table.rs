@@ -163,7 +163,8 @@ fn visible_integral(md: &Microfacet, wi: Vec3A, sq: &Square, g: impl Fn(Vec3A) -
         for (&(cos_phi, sin_phi), wy) in sq.azimuth.iter().zip(&sq.weights) {
             let m = md.visible_normal(&frame, r, cos_phi, sin_phi);
             let pdf = md.visible_pdf(wi, g1_wi, m);
-            if pdf <= 0.0 || !pdf.is_finite() {
+            // `pdf <= 0 || !pdf.is_finite()` (NaN included), in two comparisons.
+            if !(pdf > 0.0 && pdf < f32::INFINITY) {
                 continue;
             }
             // D_wi here is the density's own expression: the same bits.
