@@ -6,6 +6,7 @@
 //! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
+use crate::traverse::{FloatPlanes, node_hits_float, walk, walk_with};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
@@ -38,12 +39,20 @@ pub struct Accel {
     packs: Vec<Tri4>,
     /// Per padded slot (padding: zero normal, ids `u32::MAX`).
     pub info: Vec<TriInfo>,
+    /// Each node's child planes as floats when there are at most [`FLOAT_PLANES_MAX_NODES`]
+    /// nodes (empty otherwise): the node test then skips converting the bytes.
+    planes: Vec<FloatPlanes>,
     triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
     pub degenerate: usize,
     pub bounds_min: Vec3A,
     pub bounds_max: Vec3A,
 }
+
+/// Most nodes whose planes [`Accel`] keeps as floats (192 bytes a node, 1.5 MiB at most, so
+/// they stay in cache next to the nodes): an interior of a few thousand triangles has a few
+/// hundred nodes; a million-triangle mesh keeps the bytes alone.
+pub const FLOAT_PLANES_MAX_NODES: usize = 1 << 13;
 
 /// The closest hit in one [`Accel`]: distance and BVH slot.
 #[derive(Clone, Copy, Debug)]
@@ -150,10 +159,16 @@ impl Accel {
             })
             .collect();
         let triangles = kept.len();
+        let planes = if bvh.nodes.len() <= FLOAT_PLANES_MAX_NODES {
+            bvh.nodes.iter().map(FloatPlanes::of).collect()
+        } else {
+            Vec::new()
+        };
         Accel {
             bvh,
             packs,
             info,
+            planes,
             triangles,
             degenerate,
             bounds_min: lo,
@@ -173,7 +188,7 @@ impl Accel {
     pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
         let mut best = None;
         let shear = Shear::new(ray);
-        crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
+        self.walk(ray, state, |base, mask, r| {
             for_blocks(base, mask, |block, lanes| {
                 if let Some((t, lane)) = self.packs[block as usize].closest(r, &shear, lanes) {
                     r.tmax = t;
@@ -188,6 +203,23 @@ impl Accel {
         best
     }
 
+    /// [`walk`] over this structure, with the float planes' node test when they are kept.
+    #[inline(always)]
+    fn walk(
+        &self,
+        ray: &Ray,
+        state: &mut Traversal,
+        leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
+    ) {
+        let (bvh, planes) = (&self.bvh, &self.planes);
+        if planes.is_empty() {
+            walk(bvh, &mut { *ray }, state, leaves);
+        } else {
+            let hits = |i: usize, r: &Ray, oct| node_hits_float(&bvh.nodes[i], &planes[i], r, oct);
+            walk_with(bvh, &mut { *ray }, state, hits, leaves);
+        }
+    }
+
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
@@ -199,7 +231,7 @@ impl Accel {
     pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
         let mut blocked = false;
         let shear = Shear::new(ray);
-        crate::traverse::walk(&self.bvh, &mut { *ray }, state, |base, mask, r| {
+        self.walk(ray, state, |base, mask, r| {
             blocked = for_blocks(base, mask, |block, lanes| {
                 self.packs[block as usize].any(r, &shear, lanes)
             });
@@ -243,6 +275,7 @@ impl Accel {
             + self.bvh.primitive_indices.len() * 4
             + self.packs.len() * std::mem::size_of::<Tri4>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
+            + self.planes.len() * std::mem::size_of::<FloatPlanes>()
     }
 }
 

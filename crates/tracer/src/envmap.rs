@@ -170,8 +170,12 @@ impl LatLong {
         let x = u * self.w as f32 - 0.5;
         let x0 = x.floor();
         let fx = x - x0;
-        let i0 = (x0 as i64).rem_euclid(self.w as i64) as usize;
-        let i1 = (i0 + 1) % self.w;
+        // Wrapped along u; a u in [0, 1) needs a division only at the seam (x0 = −1).
+        let i0 = match x0 as i64 {
+            i if (0..self.w as i64).contains(&i) => i as usize,
+            i => i.rem_euclid(self.w as i64) as usize,
+        };
+        let i1 = if i0 + 1 == self.w { 0 } else { i0 + 1 };
         let y = (v * (self.h - 1) as f32).max(0.0);
         let j0 = (y as usize).min(self.h.saturating_sub(2));
         let fy = (y - j0 as f32).clamp(0.0, 1.0);
@@ -185,7 +189,12 @@ impl LatLong {
     /// The distribution's coordinates of map point (u, v).
     #[inline]
     fn cell_coords(&self, u: f32, v: f32) -> [f32; 2] {
-        let x = (u * self.w as f32 - 0.5).rem_euclid(self.w as f32) / self.w as f32;
+        // rem_euclid is the identity on [0, w) (an fmodf call saved for all but the seam).
+        let w = self.w as f32;
+        let x = match u * w - 0.5 {
+            x if (0.0..w).contains(&x) => x,
+            x => x.rem_euclid(w),
+        } / w;
         [x, v]
     }
 
@@ -221,5 +230,49 @@ impl LatLong {
             li: self.lookup(u, v),
             pdf,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use eyeadapt_scene::{Image, Rgb};
+    use std::path::PathBuf;
+    use std::sync::Arc;
+
+    /// The seam shortcuts (no division inside [0, w)) give the wrapped indices and cell
+    /// coordinates of the plain `rem_euclid` forms, bit for bit, across the whole u range and
+    /// just around the seam.
+    #[test]
+    fn wrapping_along_u_is_the_plain_rem_euclid() {
+        let (w, h) = (7u32, 4u32);
+        let texels = (0..w * h).map(|k| Rgb::splat(1.0 + k as f32)).collect();
+        let map = EnvironmentMap {
+            filename: PathBuf::from("t.exr"),
+            image: Arc::new(Image {
+                width: w,
+                height: h,
+                texels,
+            }),
+            scale: 1.0,
+            to_world: glam::Mat3::IDENTITY,
+        };
+        let ll = LatLong::new(&map, Vec3A::ZERO).unwrap();
+        let wf = w as f32;
+        let mut us: Vec<f32> = (0..=4000).map(|k| k as f32 / 4000.0).collect();
+        us.extend([0.5 / wf, 0.5 / wf - 1e-7, 1.0 - 1e-7, -0.0, 1e-30]);
+        for u in us {
+            let x = (u * wf - 0.5).rem_euclid(wf) / wf;
+            assert_eq!(ll.cell_coords(u, 0.3)[0].to_bits(), x.to_bits(), "u {u}");
+            // lookup's wrapped columns, by the texel values they blend.
+            let xf = u * wf - 0.5;
+            let x0 = xf.floor();
+            let fx = xf - x0;
+            let i0 = (x0 as i64).rem_euclid(w as i64) as usize;
+            let i1 = (i0 + 1) % w as usize;
+            let t = |i: usize| Vec3A::from(map.image.texels[i]);
+            let want = t(i0) * (1.0 - fx) + t(i1) * fx;
+            assert_eq!(ll.lookup(u, 0.0), want, "u {u}");
+        }
     }
 }

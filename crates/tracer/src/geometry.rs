@@ -295,6 +295,12 @@ impl Geometry {
         }
     }
 
+    /// The material at `hit` (the [`SurfaceInteraction::material`] of its interaction).
+    #[inline]
+    pub fn material_of(&self, hit: &Hit) -> u32 {
+        self.instances[hit.instance as usize].material
+    }
+
     /// The surface at `hit` of the ray from `origin` along `dir`: world-space position,
     /// geometric and shading normals, UV, ∂p/∂u, vertex colour, material and light. Without
     /// `parameterisation` (nothing in the scene reads them) UV, ∂p/∂u, ∂p/∂v and the colours

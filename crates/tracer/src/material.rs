@@ -323,6 +323,22 @@ impl Materials {
         }
     }
 
+    /// False when no leaf of `material` may pass shadow rays ([`Leaf::may_pass`]): its
+    /// straight-through transmittance is then 0 at every hit, whatever its blend weights.
+    #[inline]
+    pub fn may_pass(&self, material: u32, cutouts: bool) -> bool {
+        self.subtree_may_pass(&self.entries[material as usize], cutouts)
+    }
+
+    fn subtree_may_pass(&self, e: &Entry, cutouts: bool) -> bool {
+        match e.blend {
+            None => Leaf(e).may_pass(cutouts),
+            Some((_, children)) => children
+                .iter()
+                .any(|&c| self.subtree_may_pass(&self.nodes[c as usize], cutouts)),
+        }
+    }
+
     /// True when some material may let shadow rays through (`shadow.rs`): a thin pane, or,
     /// when `cutouts` pass them, a mask or a null surface.
     pub fn has_see_through(&self, cutouts: bool) -> bool {
@@ -560,3 +576,7 @@ impl Materials {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "material_tests.rs"]
+mod tests;

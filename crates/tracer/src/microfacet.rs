@@ -9,6 +9,17 @@ use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::PI;
 
+/// The stretched view direction of visible-normal sampling and the frame around it
+/// ([`Microfacet::visible_frame`]).
+#[derive(Clone, Copy, Debug)]
+pub struct VisibleFrame {
+    vh: Vec3A,
+    t1: Vec3A,
+    t2: Vec3A,
+    /// Weight of the half-disk warp, (1 + vh.z) / 2.
+    s: f32,
+}
+
 #[derive(Clone, Copy, Debug)]
 pub struct Microfacet {
     pub alpha: f32,
@@ -60,6 +71,14 @@ impl Microfacet {
         if w.dot(m) * w.z <= 0.0 {
             return 0.0;
         }
+        self.g1_unmasked(w)
+    }
+
+    /// [`Self::g1`] for a microfacet normal on `w`'s side (`w·m` and `w.z` of one sign): past
+    /// that test G1 depends on `w` alone, so a caller with many normals for one `w` (the
+    /// plastic tables' quadrature) computes it once.
+    #[inline]
+    pub fn g1_unmasked(&self, w: Vec3A) -> f32 {
         if !self.isotropic() {
             return self.g1_anisotropic(w);
         }
@@ -107,33 +126,62 @@ impl Microfacet {
         if self.beckmann {
             self.d(m) * m.z.max(0.0)
         } else {
-            if wi.z <= 0.0 {
-                return 0.0;
-            }
-            self.g1(wi, m) * wi.dot(m).max(0.0) * self.d(m) / wi.z
+            self.visible_pdf(wi, self.g1_unmasked(wi), m)
         }
+    }
+
+    /// [`Self::pdf`] of a GGX surface (visible normals), given `wi`'s
+    /// [`Self::g1_unmasked`]: G1(wi, m) (wi·m)⁺ D(m) / wi.z, operation for operation.
+    #[inline]
+    pub fn visible_pdf(&self, wi: Vec3A, g1_wi: f32, m: Vec3A) -> f32 {
+        if wi.z <= 0.0 {
+            return 0.0;
+        }
+        let g1 = if wi.dot(m) * wi.z <= 0.0 { 0.0 } else { g1_wi };
+        g1 * wi.dot(m).max(0.0) * self.d(m) / wi.z
     }
 
     /// Samples a visible GGX normal seen from `wi` (Heitz 2018, "Sampling the GGX
     /// Distribution of Visible Normals"). `wi.z > 0`.
     fn sample_visible(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
-        let (a, b) = (self.alpha, self.alpha_v);
-        let vh = Vec3A::new(a * wi.x, b * wi.y, wi.z).normalize();
+        let phi = 2.0 * PI * u[1];
+        self.visible_normal(&self.visible_frame(wi), u[0].sqrt(), phi.cos(), phi.sin())
+    }
+
+    /// The part of [`Self::sample`] for GGX that depends on `wi` alone (`wi.z > 0`).
+    #[inline]
+    pub fn visible_frame(&self, wi: Vec3A) -> VisibleFrame {
+        let vh = Vec3A::new(self.alpha * wi.x, self.alpha_v * wi.y, wi.z).normalize();
         let lensq = vh.x * vh.x + vh.y * vh.y;
         let t1 = if lensq > 0.0 {
             Vec3A::new(-vh.y, vh.x, 0.0) / lensq.sqrt()
         } else {
             Vec3A::X
         };
-        let t2 = vh.cross(t1);
-        let r = u[0].sqrt();
-        let phi = 2.0 * PI * u[1];
-        let p1 = r * phi.cos();
-        let mut p2 = r * phi.sin();
-        let s = 0.5 * (1.0 + vh.z);
+        VisibleFrame {
+            vh,
+            t1,
+            t2: vh.cross(t1),
+            s: 0.5 * (1.0 + vh.z),
+        }
+    }
+
+    /// The visible GGX normal of `frame`'s direction at disk radius `r` (√u₀) and azimuth
+    /// φ = 2π u₁ given by its cosine and sine: [`Self::sample`] for GGX, bit for bit.
+    #[inline]
+    pub fn visible_normal(
+        &self,
+        frame: &VisibleFrame,
+        r: f32,
+        cos_phi: f32,
+        sin_phi: f32,
+    ) -> Vec3A {
+        let VisibleFrame { vh, t1, t2, s } = *frame;
+        let p1 = r * cos_phi;
+        let mut p2 = r * sin_phi;
         p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * p2;
         let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-        Vec3A::new(a * nh.x, b * nh.y, nh.z.max(1e-6)).normalize()
+        Vec3A::new(self.alpha * nh.x, self.alpha_v * nh.y, nh.z.max(1e-6)).normalize()
     }
 
     /// D(m) of an anisotropic surface (`m.z > 0`).

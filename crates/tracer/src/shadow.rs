@@ -68,13 +68,27 @@ pub fn shadow_transmittance(
         let Some(hit) = scene.geometry.intersect_with(scratch, o, wi, left) else {
             return tr;
         };
-        let si = scene
-            .geometry
-            .interaction(o, wi, &hit, scene.parameterisation);
-        tr *= surface_transmittance(scene, &si, -wi);
+        // Most hits are opaque (a wall between the point and the light), and an opaque
+        // material passes nothing, which needs no interaction to know.
+        let interaction = || {
+            scene
+                .geometry
+                .interaction(o, wi, &hit, scene.parameterisation)
+        };
+        let material = scene.geometry.material_of(&hit);
+        let mut seen = None;
+        tr *= if scene.materials.may_pass(material, scene.cutouts_pass) {
+            let si = interaction();
+            let t = surface_transmittance(scene, &si, -wi);
+            seen = Some(si);
+            t
+        } else {
+            Vec3A::ZERO
+        };
         if tr.max_element() <= 0.0 {
             return Vec3A::ZERO;
         }
+        let si = seen.unwrap_or_else(interaction);
         // On past the surface, just behind it as seen from the shading point.
         let ng = if si.ng.dot(wi) < 0.0 { si.ng } else { -si.ng };
         o = offset(si.p, -ng);

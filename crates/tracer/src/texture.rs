@@ -115,6 +115,30 @@ fn wrap_index(i: i64, n: u32, wrap: WrapMode) -> usize {
     }) as usize
 }
 
+/// [`wrap_index`] of `i` and of `i + 1`: for `Repeat` the second follows from the first
+/// without another division (two of the four a bilinear lookup made were most of its cost).
+#[inline]
+fn wrap_pair(i: i64, n: u32, wrap: WrapMode) -> (usize, usize) {
+    match wrap {
+        WrapMode::Repeat => {
+            let a = wrap_index(i, n, wrap);
+            (a, if a + 1 == n as usize { 0 } else { a + 1 })
+        }
+        _ => (wrap_index(i, n, wrap), wrap_index(i + 1, n, wrap)),
+    }
+}
+
+/// The four texels around (x0, y0) of a bilinear lookup: (x0, y0), (x0 + 1, y0), (x0, y0 + 1),
+/// (x0 + 1, y0 + 1), each wrapped.
+#[inline]
+fn corners(img: &Image, x0: i64, y0: i64, wrap: WrapMode) -> [Vec3A; 4] {
+    let (ix0, ix1) = wrap_pair(x0, img.width, wrap);
+    let (iy0, iy1) = wrap_pair(y0, img.height, wrap);
+    let w = img.width as usize;
+    let at = |ix: usize, iy: usize| -> Vec3A { img.texels[iy * w + ix].into() };
+    [at(ix0, iy0), at(ix1, iy0), at(ix0, iy1), at(ix1, iy1)]
+}
+
 /// The image at `uv` ((0, 0) = top-left corner, (1, 1) = bottom-right). Bilinear filtering
 /// interpolates between texel centres (at (i + ½)/width), as Mitsuba does.
 pub fn lookup(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) -> Vec3A {
@@ -132,9 +156,9 @@ pub fn lookup(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) -> Vec3
             let (x, y) = (x - 0.5, y - 0.5);
             let (x0, y0) = (x.floor(), y.floor());
             let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
-            let (x0, y0) = (x0 as i64, y0 as i64);
-            let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
-            let bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
+            let [f00, f10, f01, f11] = corners(img, x0 as i64, y0 as i64, wrap);
+            let top = f00 * (1.0 - fx) + f10 * fx;
+            let bottom = f01 * (1.0 - fx) + f11 * fx;
             top * (1.0 - fy) + bottom * fy
         }
     }
@@ -148,15 +172,10 @@ pub fn lookup_grad(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) ->
         return [Vec3A::ZERO; 2];
     }
     let (w, h) = (img.width, img.height);
-    let at = |x: i64, y: i64| -> Vec3A {
-        img.texels[wrap_index(y, h, wrap) * w as usize + wrap_index(x, w, wrap)].into()
-    };
     let (x, y) = (uv.x as f64 * w as f64 - 0.5, uv.y as f64 * h as f64 - 0.5);
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
-    let (x0, y0) = (x0 as i64, y0 as i64);
-    let (f00, f10) = (at(x0, y0), at(x0 + 1, y0));
-    let (f01, f11) = (at(x0, y0 + 1), at(x0 + 1, y0 + 1));
+    let [f00, f10, f01, f11] = corners(img, x0 as i64, y0 as i64, wrap);
     let dx = (f10 - f00) * (1.0 - fy) + (f11 - f01) * fy;
     let dy = (f01 - f00) * (1.0 - fx) + (f11 - f10) * fx;
     [dx * w as f32, dy * h as f32]
@@ -166,6 +185,20 @@ pub fn lookup_grad(img: &Image, uv: Vec2, filter: FilterType, wrap: WrapMode) ->
 mod tests {
     use super::*;
     use eyeadapt_scene::Rgb;
+
+    /// The shortcut for `Repeat` (and the plain pair for the others) is the two wraps it
+    /// replaces, from far negative to far positive indices, including the last texel.
+    #[test]
+    fn wrap_pair_is_two_wraps() {
+        for wrap in [WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror] {
+            for n in [1u32, 2, 3, 7, 64] {
+                for i in -300i64..300 {
+                    let want = (wrap_index(i, n, wrap), wrap_index(i + 1, n, wrap));
+                    assert_eq!(wrap_pair(i, n, wrap), want, "{wrap:?} n {n} i {i}");
+                }
+            }
+        }
+    }
 
     /// 2×2: red, green / blue, white (top row first).
     fn image() -> Image {

@@ -11,7 +11,9 @@
 //! positive while its 1/d is negative, so obvhs takes the far plane as the near one and misses
 //! the node; min/max takes the right one). The traversal loop ([`walk`]) is obvhs's `traverse!`
 //! macro, except that it hands over a node's hit triangles together, so that leaves can be
-//! tested four at a time ([`crate::tri4`]).
+//! tested four at a time ([`crate::tri4`]), and that the node test is the caller's choice
+//! ([`walk_with`]): small structures keep their planes as floats ([`FloatPlanes`]), which
+//! spares the widening and conversion and gives the same masks.
 use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
@@ -20,32 +22,94 @@ use obvhs::ray::{Ray, RayHit};
 /// obvhs's lower bound on a child's entry distance (its `node::EPSILON`).
 const NODE_EPSILON: f32 = 0.0001;
 
+/// A node's 48 quantised child planes as floats, converted once at build time: what
+/// [`node_hits`] widens and converts on every test (a fifth of its instructions). 192 bytes a
+/// node, so [`crate::accel`] keeps them only for small structures.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(16))]
+pub struct FloatPlanes {
+    /// min x, max x, min y, max y, min z, max z of the 8 children, in node order.
+    q: [[f32; 8]; 6],
+}
+
+impl FloatPlanes {
+    pub fn of(node: &CwBvhNode) -> FloatPlanes {
+        let fields = [
+            &node.child_min_x,
+            &node.child_max_x,
+            &node.child_min_y,
+            &node.child_max_y,
+            &node.child_min_z,
+            &node.child_max_z,
+        ];
+        FloatPlanes {
+            q: fields.map(|bytes| bytes.map(|b| b as f32)),
+        }
+    }
+}
+
 /// Bitmask of the node's children that `ray` enters within (ε, tmax), in obvhs's hit-mask
 /// encoding (child bits shifted by their traversal priority or primitive offset).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     use std::arch::x86_64::*;
+    let fields = [
+        &node.child_min_x,
+        &node.child_max_x,
+        &node.child_min_y,
+        &node.child_max_y,
+        &node.child_min_z,
+        &node.child_max_z,
+    ];
+    // SAFETY: SSE2 is part of the x86_64 baseline; the loads read 8 bytes of [u8; 8] fields.
+    hits_of_planes(node, ray, oct_inv4, |f| unsafe {
+        // The 8 plane bytes of one field as two vectors of 4 floats (children 0-3 and 4-7).
+        let v = _mm_loadl_epi64(fields[f].as_ptr() as *const __m128i);
+        let zero = _mm_setzero_si128();
+        let w = _mm_unpacklo_epi8(v, zero);
+        (
+            _mm_cvtepi32_ps(_mm_unpacklo_epi16(w, zero)),
+            _mm_cvtepi32_ps(_mm_unpackhi_epi16(w, zero)),
+        )
+    })
+}
+
+/// [`node_hits`] with the node's planes given as floats: the same mask, bit for bit (a byte
+/// converts to a float exactly).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub fn node_hits_float(node: &CwBvhNode, planes: &FloatPlanes, ray: &Ray, oct_inv4: u32) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; `FloatPlanes` is 16-byte aligned and each
+    // row is 8 floats, so both aligned loads are in bounds.
+    hits_of_planes(node, ray, oct_inv4, |f| unsafe {
+        let row = planes.q[f].as_ptr();
+        (_mm_load_ps(row), _mm_load_ps(row.add(4)))
+    })
+}
+
+/// The node test of [`node_hits`], with `planes(f)` giving field `f` (min x, max x, min y,
+/// max y, min z, max z) of children 0-3 and 4-7 as floats.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn hits_of_planes(
+    node: &CwBvhNode,
+    ray: &Ray,
+    oct_inv4: u32,
+    planes: impl Fn(usize) -> (std::arch::x86_64::__m128, std::arch::x86_64::__m128),
+) -> u32 {
+    use std::arch::x86_64::*;
     let adj_dir = node.compute_extent() * ray.inv_direction;
     let adj_org = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
-    // SAFETY: SSE2 is part of the x86_64 baseline; the loads read 8 bytes of [u8; 8] fields.
+    // SAFETY: SSE2 is part of the x86_64 baseline.
     let mask = unsafe {
-        let zero = _mm_setzero_si128();
-        // The 8 plane bytes of one field as two vectors of 4 floats (children 0-3 and 4-7).
-        let planes = |bytes: &[u8; 8]| -> (__m128, __m128) {
-            let v = _mm_loadl_epi64(bytes.as_ptr() as *const __m128i);
-            let w = _mm_unpacklo_epi8(v, zero);
-            (
-                _mm_cvtepi32_ps(_mm_unpacklo_epi16(w, zero)),
-                _mm_cvtepi32_ps(_mm_unpackhi_epi16(w, zero)),
-            )
-        };
         // For one axis: entry and exit distances of both halves. With a finite ray (obvhs
         // makes every 1/direction finite) t = q·d + o is monotonic in q under rounding, so
         // min/max picks exactly the plane a sign test would.
-        let axis = |lo: &[u8; 8], hi: &[u8; 8], d: f32, o: f32| {
-            let (lo0, lo1) = planes(lo);
-            let (hi0, hi1) = planes(hi);
+        let axis = |a: usize, d: f32, o: f32| {
+            let (lo0, lo1) = planes(2 * a);
+            let (hi0, hi1) = planes(2 * a + 1);
             let (d, o) = (_mm_set1_ps(d), _mm_set1_ps(o));
             let t = |q: __m128| _mm_add_ps(_mm_mul_ps(q, d), o);
             let (a0, b0, a1, b1) = (t(lo0), t(hi0), t(lo1), t(hi1));
@@ -54,9 +118,9 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
                 [_mm_max_ps(a0, b0), _mm_max_ps(a1, b1)],
             )
         };
-        let (nx, fx) = axis(&node.child_min_x, &node.child_max_x, adj_dir.x, adj_org.x);
-        let (ny, fy) = axis(&node.child_min_y, &node.child_max_y, adj_dir.y, adj_org.y);
-        let (nz, fz) = axis(&node.child_min_z, &node.child_max_z, adj_dir.z, adj_org.z);
+        let (nx, fx) = axis(0, adj_dir.x, adj_org.x);
+        let (ny, fy) = axis(1, adj_dir.y, adj_org.y);
+        let (nz, fz) = axis(2, adj_dir.z, adj_org.z);
         let eps = _mm_set1_ps(NODE_EPSILON);
         let tmax = _mm_set1_ps(ray.tmax);
         let mut mask = 0u32;
@@ -86,6 +150,12 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     node.intersect_ray(ray, oct_inv4)
 }
 
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub fn node_hits_float(node: &CwBvhNode, _: &FloatPlanes, ray: &Ray, oct_inv4: u32) -> u32 {
+    node.intersect_ray(ray, oct_inv4)
+}
+
 /// Walks the nodes `ray` enters, in obvhs's order (its `traverse!` macro, step for step), and
 /// hands each entered node's hit leaf triangles to `leaves(base, mask, ray)`: slot `base + i`
 /// for each set bit i of `mask` (at most 24 bits). `leaves` may shorten `ray.tmax` (the node
@@ -98,6 +168,25 @@ pub fn walk(
     bvh: &CwBvh,
     ray: &mut Ray,
     state: &mut Traversal,
+    leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
+) {
+    walk_with(
+        bvh,
+        ray,
+        state,
+        |i, r, oct| node_hits(&bvh.nodes[i], r, oct),
+        leaves,
+    );
+}
+
+/// [`walk`] with its node test given: `hits(i, ray, oct_inv4)` is [`node_hits`] of node `i`
+/// (or a test that gives the same masks, such as [`node_hits_float`]).
+#[inline(always)]
+pub fn walk_with(
+    bvh: &CwBvh,
+    ray: &mut Ray,
+    state: &mut Traversal,
+    hits: impl Fn(usize, &Ray, u32) -> u32,
     mut leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
 ) {
     use obvhs::faststack::FastStack;
@@ -123,8 +212,9 @@ pub fn walk(
             }
             let slot_index = (child_bit - 24) ^ (oct_inv4 & 0xff);
             let relative_index = (hits_imask & !(u32::MAX << slot_index)).count_ones();
-            let node = &bvh.nodes[(nodes.x + relative_index) as usize];
-            let hit_mask = node_hits(node, ray, oct_inv4);
+            let index = (nodes.x + relative_index) as usize;
+            let node = &bvh.nodes[index];
+            let hit_mask = hits(index, ray, oct_inv4);
             nodes = UVec2::new(
                 node.child_base_idx,
                 (hit_mask & 0xff00_0000) | node.imask as u32,
@@ -272,6 +362,7 @@ mod tests {
                 let a = node_hits(node, &ray, oct);
                 let b = node.intersect_ray(&ray, oct);
                 differ += (a != b) as u32;
+                differ += (node_hits_float(node, &FloatPlanes::of(node), &ray, oct) != a) as u32;
                 hits += (a != 0) as u32;
             }
         }
