@@ -34,18 +34,23 @@ pub struct FloatPlanes {
 
 impl FloatPlanes {
     pub fn of(node: &CwBvhNode) -> FloatPlanes {
-        let fields = [
-            &node.child_min_x,
-            &node.child_max_x,
-            &node.child_min_y,
-            &node.child_max_y,
-            &node.child_min_z,
-            &node.child_max_z,
-        ];
         FloatPlanes {
-            q: fields.map(|bytes| bytes.map(|b| b as f32)),
+            q: plane_fields(node).map(|bytes| bytes.map(|b| b as f32)),
         }
     }
+}
+
+/// A node's quantised child planes: min x, max x, min y, max y, min z, max z, 8 children each.
+#[inline(always)]
+fn plane_fields(node: &CwBvhNode) -> [&[u8; 8]; 6] {
+    [
+        &node.child_min_x,
+        &node.child_max_x,
+        &node.child_min_y,
+        &node.child_max_y,
+        &node.child_min_z,
+        &node.child_max_z,
+    ]
 }
 
 /// Bitmask of the node's children that `ray` enters within (ε, tmax), in obvhs's hit-mask
@@ -54,14 +59,7 @@ impl FloatPlanes {
 #[inline(always)]
 pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     use std::arch::x86_64::*;
-    let fields = [
-        &node.child_min_x,
-        &node.child_max_x,
-        &node.child_min_y,
-        &node.child_max_y,
-        &node.child_min_z,
-        &node.child_max_z,
-    ];
+    let fields = plane_fields(node);
     // SAFETY: SSE2 is part of the x86_64 baseline; the loads read 8 bytes of [u8; 8] fields.
     hits_of_planes(node, ray, oct_inv4, |f| unsafe {
         // The 8 plane bytes of one field as two vectors of 4 floats (children 0-3 and 4-7).
