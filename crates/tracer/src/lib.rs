@@ -27,6 +27,7 @@ mod integrator;
 mod interaction;
 mod light_bounds4;
 mod light_pick;
+mod light_pick4;
 mod light_tree;
 mod lights;
 mod material;

@@ -109,7 +109,7 @@ impl Bounds4 {
 
 /// Lane-wise square root (correctly rounded, so the same bits as the scalar one).
 #[inline(always)]
-fn sqrt(v: Vec4) -> Vec4 {
+pub(crate) fn sqrt(v: Vec4) -> Vec4 {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::_mm_sqrt_ps;

@@ -348,3 +348,128 @@ fn behind_portals_the_sun_keeps_its_weight_only_where_its_direction_crosses_one(
         assert_eq!(p, room.prob(k, shade, n));
     }
 }
+
+/// A random quad (`quad`) or triangle light at `o` with edges `e1`, `e2`, facing e1 × e2.
+fn area_light(o: Vec3A, e1: Vec3A, e2: Vec3A, emission: Vec3A, quad: bool) -> Vec<AreaTri> {
+    let c = e1.cross(e2);
+    let tri = |v0: Vec3A, a: Vec3A, b: Vec3A| AreaTri {
+        v0,
+        e1: a - v0,
+        e2: b - v0,
+        n: c.normalize(),
+        area: 0.5 * c.length(),
+        emission,
+        texture: u32::MAX,
+        scale: emission,
+        uv: [glam::Vec2::ZERO, glam::Vec2::X, glam::Vec2::Y],
+    };
+    let mut t = vec![tri(o, o + e1, o + e2)];
+    if quad {
+        t.push(tri(o + e1 + e2, o + e2, o + e1));
+    }
+    t
+}
+
+#[test]
+fn four_area_units_at_a_time_weigh_bit_for_bit_what_one_does() {
+    // A fixed xorshift stream: the same cases on every run.
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut f = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let v = |f: &mut dyn FnMut() -> f32, r: f32| {
+        Vec3A::new(f() * 2.0 - 1.0, f() * 2.0 - 1.0, f() * 2.0 - 1.0) * r
+    };
+    // Cases, and among them units weighed 0 and units weighed more.
+    let (mut cases, mut zero, mut positive) = (0, 0, 0);
+    for scene in 0..60 {
+        // 1 ..= 16 area units (and beside them a point light and the sky, up to 16 units).
+        let n_area = 1 + scene % 16;
+        let (mut area, mut quad_of, mut quads) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..n_area {
+            let (o, e1, e2) = (v(&mut f, 4.0), v(&mut f, 1.5), v(&mut f, 1.5));
+            // Some black lights (no power) and axis-aligned ones (exact zeros in the tests).
+            let emission = if k % 7 == 3 {
+                Vec3A::ZERO
+            } else {
+                v(&mut f, 5.0).abs()
+            };
+            let (e1, e2) = if k % 3 == 0 {
+                (Vec3A::new(e1.x, 0.0, 0.0), Vec3A::new(0.0, 0.0, e2.z))
+            } else {
+                (e1, e2)
+            };
+            let quad = k % 2 == 0;
+            let t = area_light(o, e1, e2, emission, quad);
+            let q = if quad { quads.len() as u32 } else { u32::MAX };
+            if quad {
+                quads.push(Parallelogram { o, e1, e2 });
+            }
+            quad_of.extend(t.iter().map(|_| q));
+            area.extend(t);
+        }
+        let point = DeltaLight::Point {
+            position: v(&mut f, 3.0),
+            intensity: Vec3A::ONE,
+        };
+        let others = (16 - n_area).min(2);
+        let deltas = if others >= 1 { vec![point] } else { vec![] };
+        let env = (others >= 2).then_some(Vec3A::splat(0.3));
+        let p = LightPicker::build(&area, &quad_of, &quads, &deltas, env, 10.0);
+        assert!(p.is_spatial() && p.area4.len() == n_area);
+        // Random points and normals, and points where the exact zero tests are decided: on
+        // a unit's plane, at its corners and centre, just in front of and behind it.
+        let mut points: Vec<Vec3A> = (0..40).map(|_| v(&mut f, 6.0)).collect();
+        for b in &p.bounds {
+            if let Bounds::Area(a) = b {
+                points.extend(a.corners);
+                points.push(a.centre);
+                points.push((a.corners[0] + a.corners[1]) * 0.5);
+                for h in [1e-6, -1e-6, 1e-3, -1e-3] {
+                    points.push(a.centre + a.normal * h);
+                    points.push(a.corners[2] + a.normal * h);
+                }
+                points.push(a.centre + a.normal * 1e20);
+            }
+        }
+        for (i, &x) in points.iter().enumerate() {
+            let to_light = match p.bounds[i % n_area] {
+                Bounds::Area(a) => a.centre - x,
+                _ => unreachable!(),
+            };
+            let normals = [
+                None,
+                Some(v(&mut f, 1.0).normalize_or(Vec3A::Y)),
+                Some(to_light.normalize_or(Vec3A::Y)),
+                Some(-to_light.normalize_or(Vec3A::Y)),
+                // Edge-on to the light's plane, and axis-aligned.
+                Some(to_light.cross(Vec3A::Y).normalize_or(Vec3A::X)),
+                Some(Vec3A::Y),
+                Some(-Vec3A::X),
+            ];
+            for n in normals {
+                let mut w = [f32::NAN; SPATIAL_MAX_UNITS];
+                p.area4.importances(x, n, &mut w);
+                let mut total = 0.0f32;
+                for (k, b) in p.bounds.iter().enumerate() {
+                    let one = unit_importance(b, x, n, p.behind(x));
+                    if k < n_area {
+                        assert_eq!(w[k].to_bits(), one.to_bits(), "unit {k} at {x} n {n:?}");
+                        *(if one > 0.0 { &mut positive } else { &mut zero }) += 1;
+                    }
+                    total += one;
+                }
+                let mut all = [0.0; SPATIAL_MAX_UNITS];
+                assert_eq!(p.importances(x, n, &mut all).to_bits(), total.to_bits());
+                cases += 1;
+            }
+        }
+    }
+    assert!(
+        cases > 10_000 && zero > 10_000 && positive > 10_000,
+        "{cases} cases, {zero} zero and {positive} positive weights"
+    );
+}

@@ -1,0 +1,129 @@
+//! The light tree of a [`LightPicker`](super::LightPicker) with more than
+//! [`SPATIAL_MAX_UNITS`](super::SPATIAL_MAX_UNITS) units: the choice among the units that have
+//! a position goes down a [`LightTree`], and the units without one (directional lights, the
+//! environment) compete with its root.
+use super::{Behind, Bounds, importance, light_bounds, tree_leaf, unit_importance};
+use crate::light_tree::LightTree;
+use glam::Vec3A;
+
+/// The light tree of a picker and how its leaves map to units.
+pub(super) struct Tree {
+    tree: LightTree,
+    /// The unit of each tree light.
+    unit: Vec<u32>,
+    /// The bounds of each tree light's unit (a copy of `bounds[unit[i]]`, one lookup less a leaf).
+    leaf_bounds: Vec<Bounds>,
+    /// Each unit's tree light, `u32::MAX` for the units outside it.
+    leaf: Vec<u32>,
+    /// Units outside the tree (no position: directional lights, the environment).
+    unbounded: Vec<u32>,
+}
+
+impl Tree {
+    /// The tree over the units of `bounds` that have a position; `None` when none has.
+    pub(super) fn build(bounds: &[Bounds]) -> Option<Tree> {
+        let mut lights = Vec::new();
+        let mut unit = Vec::new();
+        let mut leaf = vec![u32::MAX; bounds.len()];
+        let mut unbounded = Vec::new();
+        for (k, b) in bounds.iter().enumerate() {
+            match light_bounds(b) {
+                Some(lb) => {
+                    leaf[k] = lights.len() as u32;
+                    lights.push(lb);
+                    unit.push(k as u32);
+                }
+                None => unbounded.push(k as u32),
+            }
+        }
+        Some(Tree {
+            tree: LightTree::build(&lights)?,
+            leaf_bounds: unit.iter().map(|&k| bounds[k as usize]).collect(),
+            unit,
+            leaf,
+            unbounded,
+        })
+    }
+
+    /// The root's importance (its light's own when the tree is one leaf) and the unbounded
+    /// units' at (`x`, `n`) with the sky's share `sky`, and their sum.
+    fn top(
+        &self,
+        bounds: &[Bounds],
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+    ) -> (f32, f32) {
+        let root = if self.unit.len() == 1 {
+            importance(&bounds[self.unit[0] as usize], x, n)
+        } else {
+            self.tree.root_importance(x, n)
+        };
+        let rest: f32 = self
+            .unbounded
+            .iter()
+            .map(|&k| unit_importance(&bounds[k as usize], x, n, behind))
+            .sum();
+        (root, root + rest)
+    }
+
+    pub(super) fn pick(
+        &self,
+        bounds: &[Bounds],
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+        u: f32,
+    ) -> Option<(usize, f32)> {
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        if self.unbounded.is_empty() {
+            // Nothing competes with the root: the walk alone chooses (and finds no light where
+            // the root's children reach none).
+            let (i, p) = self.tree.pick(x, n, u, leaf)?;
+            return Some((self.unit[i] as usize, p));
+        }
+        let (root, total) = self.top(bounds, (x, n, behind));
+        if total.is_nan() || total <= 0.0 {
+            return None;
+        }
+        let target = u * total;
+        if target < root {
+            let v = (target / root).min(1.0 - f32::EPSILON / 2.0);
+            let (i, p) = self.tree.pick(x, n, v, leaf)?;
+            return Some((self.unit[i] as usize, root / total * p));
+        }
+        let mut acc = root;
+        let mut last = None;
+        for &k in &self.unbounded {
+            let w = unit_importance(&bounds[k as usize], x, n, behind);
+            if w > 0.0 {
+                acc += w;
+                last = Some((k as usize, w / total));
+                if target < acc {
+                    break;
+                }
+            }
+        }
+        // Rounding may leave `target` at the running sum: the last unit that can contribute.
+        last.or_else(|| {
+            let (i, p) = self.tree.pick(x, n, 1.0 - f32::EPSILON / 2.0, leaf)?;
+            Some((self.unit[i] as usize, root / total * p))
+        })
+    }
+
+    pub(super) fn prob(
+        &self,
+        bounds: &[Bounds],
+        k: usize,
+        (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+    ) -> f32 {
+        let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        if self.unbounded.is_empty() {
+            return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
+        }
+        let (root, total) = self.top(bounds, (x, n, behind));
+        if total.is_nan() || total <= 0.0 {
+            return 0.0;
+        }
+        match self.leaf[k] {
+            u32::MAX => unit_importance(&bounds[k], x, n, behind) / total,
+            i => root / total * self.tree.prob(i as usize, x, n, leaf),
+        }
+    }
+}
