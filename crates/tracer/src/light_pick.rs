@@ -79,11 +79,13 @@ pub struct LightPicker {
     area4: AreaUnits4,
     /// With more than [`SPATIAL_MAX_UNITS`] units: the tree over the positioned ones.
     tree: Option<Tree>,
-    /// The openings the environment is seen through (none: the whole sky).
+    /// The openings the environment and the sun reach the interior through (none: they
+    /// reach everywhere).
     portals: Portals,
 }
 
-/// A point behind portals: the share of the sky they show there (see the module docs).
+/// A point behind portals: the portals (which a sun's direction may cross) and the share of
+/// the sky they show there (see the module docs).
 #[derive(Clone, Copy)]
 struct Behind<'a> {
     portals: &'a Portals,
@@ -224,8 +226,10 @@ impl LightPicker {
         }
     }
 
-    /// The environment reaches the interior only through `portals`: its importance at a
-    /// point they serve is scaled by the share of the sky they show there.
+    /// The environment and directional lights reach the interior only through `portals`:
+    /// at a point they serve, the environment's importance is scaled by the share of the sky
+    /// they show there, and a directional light's by [`BEHIND_PORTALS`] where its direction
+    /// crosses none of them.
     pub fn through(mut self, portals: Portals) -> LightPicker {
         self.portals = portals;
         self
