@@ -247,9 +247,20 @@ pub fn image_pass(
     let mut size: Option<(usize, usize)> = None;
     let mut omega: Option<PixelSubset> = None;
     let steps = 2 * paths.len();
+    // Decoded a thread's worth of frames at a time (PIZ decoding is most of this pass's
+    // serial time: 263 M instructions for a 320×180 demo frame), used in frame order.
+    let batch = rayon::current_num_threads().max(1);
+    let mut decoded = Vec::new().into_iter();
     for (k, (f, rel)) in paths.iter().enumerate() {
+        if k % batch == 0 {
+            let next: Vec<_> = paths[k..(k + batch).min(paths.len())]
+                .par_iter()
+                .map(|(_, rel)| read(rel))
+                .collect();
+            decoded = next.into_iter();
+        }
         on_frame(k + 1, steps);
-        let (w, h, px) = read(rel)?;
+        let (w, h, px) = decoded.next().expect("one per frame")?;
         match size {
             None => {
                 size = Some((w, h));
