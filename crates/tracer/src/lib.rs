@@ -20,7 +20,6 @@ mod distribution2d;
 mod emitter;
 mod envmap;
 mod eye;
-mod eye_probe;
 mod film;
 mod geometry;
 mod guiding;
@@ -59,7 +58,6 @@ pub use crate::eye::{
     EYE_REPLICATES, EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor,
     eye_sensor_until, sample_cardioid,
 };
-pub use crate::eye_probe::{PROBE_COMPONENTS, ProbeVariant, eye_probe};
 pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
 pub use crate::geometry::{Geometry, Hit, RayScratch};
 pub use crate::guiding::{DTree, Guiding, SdTree, from_square, to_square};
