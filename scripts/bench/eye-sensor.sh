@@ -2,7 +2,7 @@
 # The eye sensor's cost and noise (issue 10, goal 3).
 #
 #   scripts/bench/eye-sensor.sh [--eyeadapt BIN] [--frames SPEC | --static-only] [--eye-samples N]
-#                               [--markdown FILE]
+#                               [--rooms "NAME ..."] [--markdown FILE]
 #
 # 1. Cost: renders the demo job (default all 121 frames; --frames 0-120:10 for a quick look)
 #    and reads the sensor's share of each frame's time from the log ("eye sensor … % of the
@@ -12,10 +12,12 @@
 #    common random numbers off (frame-to-frame σ(u′v′) is then the Monte-Carlo noise) and once
 #    on (the default: the reading repeats exactly).
 # --eye-samples N replaces the default (adaptive) budget with exactly N paths per frame.
+# --rooms "doorway1 doorway2 orange" measures only those static cameras (of white, orange, blue,
+# doorway1, doorway2), for quicker experiments.
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
-BIN="" FRAMES="" MD="" DEMO=1 EYE_N=""
+BIN="" FRAMES="" MD="" DEMO=1 EYE_N="" ROOMS="white orange blue doorway1 doorway2"
 while [ $# -gt 0 ]; do
     case "$1" in
         --eyeadapt) BIN="$2"; shift 2 ;;
@@ -23,9 +25,17 @@ while [ $# -gt 0 ]; do
         --markdown) MD="$2"; shift 2 ;;
         --static-only) DEMO=0; shift ;;
         --eye-samples) EYE_N="$2"; shift 2 ;;
+        --rooms) ROOMS="$2"; shift 2 ;;
         *) echo "eye-sensor.sh: unknown argument $1" >&2; exit 2 ;;
     esac
 done
+for name in $ROOMS; do
+    case "$name" in
+        white | orange | blue | doorway1 | doorway2) ;;
+        *) echo "eye-sensor.sh: --rooms: unknown room $name (white, orange, blue, doorway1, doorway2)" >&2; exit 2 ;;
+    esac
+done
+[ -n "${ROOMS// /}" ] || { echo "eye-sensor.sh: --rooms: no room given" >&2; exit 2; }
 # shellcheck source=scripts/bench/common.sh
 . "$HERE/common.sh"
 eyeadapt_binary "$BIN"
@@ -47,6 +57,7 @@ for room in "white 0.6,1.6,-0.6 -0.6,0.9,-4.0" "orange 0.2,1.6,-7.2 0.0,1.5,-12.
     "blue -0.1,1.6,-11.0 0.3,1.45,-14.5" "doorway1 0.0,1.6,-4.4 0.0,1.5,-9.0" \
     "doorway2 0.0,1.6,-9.6 0.0,1.5,-14.0"; do
     read -r name pos look <<<"$room"
+    case " $ROOMS " in *" $name "*) ;; *) continue ;; esac
     for crn in false true; do
         cat >"$WORK/static-$name-$crn.toml" <<TOML
 name = "static-$name"
@@ -72,7 +83,7 @@ TOML
     done
 done
 
-python3 - "$WORK" "$FRAMES" "$start" "$end" <<'PY' | tee "$OUT"
+python3 - "$WORK" "$FRAMES" "$start" "$end" "$ROOMS" <<'PY' | tee "$OUT"
 import csv, math, os, re, statistics, sys
 work, frames = sys.argv[1], sys.argv[2] or "all 121"
 wall = float(sys.argv[4]) - float(sys.argv[3])
@@ -95,10 +106,11 @@ if demo:
   print(f"  standard error of u'v' (length of (se_u, se_v)): median {statistics.median(se):.2e}, "
       f"90th percentile {q(se, 0.9):.2e}, max {max(se):.2e}; frames <= 2e-4: "
       f"{sum(x <= 2e-4 for x in se)} of {len(se)}")
-n_static = sum(r["estimator"] == "eye" for r in csv.DictReader(open(os.path.join(work, "static-white-false", "adaptation.csv"))))
+rooms = [r for r in ("white", "orange", "blue", "doorway1", "doorway2") if r in sys.argv[5].split()]
+n_static = sum(r["estimator"] == "eye" for r in csv.DictReader(open(os.path.join(work, f"static-{rooms[0]}-false", "adaptation.csv"))))
 print(f"Static camera, {n_static} frames per room (eye only):")
 print(f"  {'room':<9} {'CRN':<5} {'paths':>7} {'reported se':>12} {'frame-to-frame sigma(u′v′)':>27}")
-for room in ("white", "orange", "blue", "doorway1", "doorway2"):
+for room in rooms:
     for crn in ("false", "true"):
         rs = [r for r in csv.DictReader(open(os.path.join(work, f"static-{room}-{crn}", "adaptation.csv")))
               if r["estimator"] == "eye"]
@@ -111,5 +123,5 @@ for room in ("white", "orange", "blue", "doorway1", "doorway2"):
 PY
 if [ -n "$MD" ]; then
     append_markdown "$MD" "Eye sensor cost and noise" \
-        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}$([ "$DEMO" = 1 ] || echo ' --static-only')${EYE_N:+ --eye-samples $EYE_N}" "$OUT"
+        "scripts/bench/eye-sensor.sh${FRAMES:+ --frames $FRAMES}$([ "$DEMO" = 1 ] || echo ' --static-only')${EYE_N:+ --eye-samples $EYE_N}$([ "$ROOMS" = "white orange blue doorway1 doorway2" ] || echo " --rooms \"$ROOMS\"")" "$OUT"
 fi
