@@ -423,23 +423,51 @@ impl Bsdf {
             Bsdf::PrincipledThin(p) => return p.sample(wo, u_lobe, u),
             Bsdf::PPlastic(p) => return p.sample(wo, u_lobe, u),
             Bsdf::RoughConductor { ggx, .. } => reflect(wo, ggx.sample(wo, u)),
-            Bsdf::Plastic {
-                ggx,
-                table,
-                spec_weight,
-                ..
-            } => {
-                if u_lobe < Self::plastic_spec_prob(wo, table, spec_weight) {
-                    reflect(wo, ggx.sample(wo, u))
-                } else {
-                    cosine_hemisphere(u)
-                }
-            }
+            Bsdf::Plastic { .. } => return self.sample_plastic(wo, u_lobe, u),
         };
         if wi.z <= 0.0 {
             return None;
         }
         BsdfSample::of_lobe(wi, self.pdf(wo, wi), || self.eval(wo, wi))
+    }
+
+    /// [`Bsdf::sample`] of a `Plastic` (wo above the surface): its `pdf` and `eval`, bit for
+    /// bit, with what they share computed once (the coating's transmittance towards `wo`,
+    /// which the lobe choice, `pdf` and `eval` each evaluated, and the half vector).
+    #[inline]
+    fn sample_plastic(&self, wo: Vec3A, u_lobe: f32, u: [f32; 2]) -> Option<BsdfSample> {
+        let Bsdf::Plastic {
+            diffuse,
+            ggx,
+            eta,
+            inv_eta2,
+            spec_weight,
+            table,
+        } = *self
+        else {
+            unreachable!("sample_plastic of a {self:?}")
+        };
+        // `plastic_spec_prob`, keeping T(wo) for `eval`'s diffuse term.
+        let to = table.transmittance(wo.z);
+        let ps = (1.0 - to) * spec_weight;
+        let ps = ps / (ps + to * (1.0 - spec_weight));
+        let wi = if u_lobe < ps {
+            reflect(wo, ggx.sample(wo, u))
+        } else {
+            cosine_hemisphere(u)
+        };
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let m = (wo + wi).normalize();
+        let spec_pdf = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
+        let pdf = ps * spec_pdf + (1.0 - ps) * wi.z * FRAC_1_PI;
+        BsdfSample::of_lobe(wi, pdf, || {
+            let spec = fresnel_dielectric(wi.dot(m), eta) * ggx.d(m) * ggx.g(wi, wo, m)
+                / (4.0 * wi.z * wo.z);
+            let ti = table.transmittance(wi.z);
+            Vec3A::splat(spec) + diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
+        })
     }
 }
 

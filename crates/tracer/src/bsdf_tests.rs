@@ -202,6 +202,53 @@ fn sampling_is_consistent_with_eval_and_pdf() {
     }
 }
 
+/// A plastic's sample carries exactly its `pdf` and `eval` (the sampling path shares their
+/// intermediate values instead of calling them): smooth and rough coatings, head-on to
+/// grazing, both lobes.
+#[test]
+fn plastic_samples_carry_pdf_and_eval_bit_for_bit() {
+    let base = Vec3A::new(0.94, 0.271, 0.361);
+    let smooth = PlasticTable::get(0.0, Distribution::Ggx, 1.9);
+    let rough = PlasticTable::get(0.2, Distribution::Beckmann, 1.5);
+    let plastics = [
+        Bsdf::plastic(base, 0.01, Distribution::Ggx, 1.9, smooth, 0.5),
+        Bsdf::plastic(base, 0.2, Distribution::Beckmann, 1.5, rough, 0.3),
+    ];
+    let key = hash_key(&[23]);
+    for b in plastics {
+        let mut seen = [0u32; 2];
+        for (k, z) in [1.0f32, 0.8, 0.3, 0.05].into_iter().enumerate() {
+            let wo = Vec3A::new((1.0 - z * z).sqrt(), 0.0, z);
+            for i in 0..4096 {
+                let mut s = SampleStream::new(key, (k * 4096 + i) as u32);
+                let (ul, u) = (s.next_1d(), s.next_2d());
+                let Some(bs) = b.sample(wo, ul, u) else {
+                    continue;
+                };
+                let (pdf, f) = (b.pdf(wo, bs.wi), b.eval(wo, bs.wi));
+                assert_eq!(
+                    bs.pdf.to_bits(),
+                    pdf.to_bits(),
+                    "{b:?} wo {wo} wi {}",
+                    bs.wi
+                );
+                assert_eq!(
+                    bs.f.to_array().map(f32::to_bits),
+                    f.to_array().map(f32::to_bits)
+                );
+                let weight = f * (bs.wi.z.abs() / pdf);
+                assert_eq!(
+                    bs.weight.to_array().map(f32::to_bits),
+                    weight.to_array().map(f32::to_bits)
+                );
+                // Both lobes were exercised: a glossy direction near the mirror one, or not.
+                seen[(bs.wi.dot(Vec3A::new(-wo.x, -wo.y, wo.z)) > 0.999) as usize] += 1;
+            }
+        }
+        assert!(seen[0] > 100 && seen[1] > 100, "{b:?}: lobes {seen:?}");
+    }
+}
+
 #[test]
 fn sampled_directions_follow_the_pdf_chi2() {
     for b in smooth_lobed() {

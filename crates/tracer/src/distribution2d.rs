@@ -14,9 +14,17 @@
 //! search's, bit for bit: k / G is exact and rounding a product by the same total is
 //! monotonic, so the bracket always holds the answer.
 
+use crate::fmath::{cell_index, cell_index_f64};
+
 pub struct Distribution2D {
     nu: usize,
     nv: usize,
+    /// `nu`, `nv` and `nu · nv` as floats: the per-sample conversions from usize, done once.
+    nu_f: f32,
+    nv_f: f32,
+    nu_d: f64,
+    nv_d: f64,
+    cells_d: f64,
     /// Row-major, per row the running sum of its weights (the last entry is the row's total).
     row_cdf: Vec<f32>,
     /// Running sum of the row totals.
@@ -56,7 +64,8 @@ fn invert_guided<T: Copy + Into<f64>>(
 ) -> (usize, f64) {
     let g = guide.len() - 1;
     let target = u as f64 * total;
-    let k = ((u as f64 * g as f64) as usize).min(g - 1);
+    // g + 1 guide entries (a small power of two): g fits in u32, whose f64 is exact.
+    let k = cell_index_f64(u as f64 * g as u32 as f64, g);
     let (lo, hi) = (guide[k] as usize, (guide[k + 1] as usize).min(cdf.len()));
     let p = lo + cdf[lo..hi].partition_point(|&c| c.into() <= target);
     finish_inversion(cdf, target, p)
@@ -117,6 +126,11 @@ impl Distribution2D {
         Some(Distribution2D {
             nu,
             nv,
+            nu_f: nu as f32,
+            nv_f: nv as f32,
+            nu_d: nu as f64,
+            nv_d: nv as f64,
+            cells_d: (nu * nv) as f64,
             row_cdf,
             marginal,
             row_guide,
@@ -153,22 +167,22 @@ impl Distribution2D {
         // at the rounded point (they differ only where rounding crosses a cell's edge).
         let below_one = |x: f64| (x as f32).min(1.0 - f32::EPSILON / 2.0);
         let p = [
-            below_one((i as f64 + fu) / self.nu as f64),
-            below_one((j as f64 + fv) / self.nv as f64),
+            below_one((i as f64 + fu) / self.nu_d),
+            below_one((j as f64 + fv) / self.nv_d),
         ];
         (p, self.pdf(p))
     }
 
     #[inline]
     fn cell_pdf(&self, i: usize, j: usize) -> f32 {
-        (self.weight(i, j) / self.total() * (self.nu * self.nv) as f64) as f32
+        (self.weight(i, j) / self.total() * self.cells_d) as f32
     }
 
     /// Density at point `p` of the unit square (the cell's, constant within it).
     #[inline]
     pub fn pdf(&self, p: [f32; 2]) -> f32 {
-        let i = ((p[0] * self.nu as f32) as usize).min(self.nu - 1);
-        let j = ((p[1] * self.nv as f32) as usize).min(self.nv - 1);
+        let i = cell_index(p[0] * self.nu_f, self.nu);
+        let j = cell_index(p[1] * self.nv_f, self.nv);
         self.cell_pdf(i, j)
     }
 }

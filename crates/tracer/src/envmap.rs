@@ -9,6 +9,7 @@
 //! sampled uniformly over the sphere.
 use crate::distribution2d::Distribution2D;
 use crate::emitter::luminance;
+use crate::fmath::{cell_index, floor};
 use eyeadapt_scene::EnvironmentMap;
 use glam::{Mat3A, Vec3A};
 use std::f32::consts::PI;
@@ -22,7 +23,14 @@ pub enum Environment {
 pub struct LatLong {
     w: usize,
     h: usize,
-    /// Radiance (scale applied), row 0 at the +y pole of the map's frame.
+    /// `w` and `h − 1` as f32, and half a texel along u (`0.5 / w`): the per-lookup
+    /// conversions from usize, done once.
+    w_f: f32,
+    h_last_f: f32,
+    half_texel: f32,
+    /// Radiance (scale applied), row 0 at the +y pole of the map's frame; each row repeats
+    /// its first texel at the end (a stride of w + 1), so the right neighbour of column
+    /// i < w is always at i + 1 and a lookup needs no wrap of its second column.
     texels: Vec<Vec3A>,
     to_world: Mat3A,
     from_world: Mat3A,
@@ -106,12 +114,12 @@ impl LatLong {
         if w == 0 || h == 0 {
             return None;
         }
-        let texels: Vec<Vec3A> = m
-            .image
-            .texels
-            .iter()
-            .map(|t| Vec3A::from(*t) * m.scale + add)
-            .collect();
+        let mut texels: Vec<Vec3A> = Vec::with_capacity((w + 1) * h);
+        for row in m.image.texels.chunks_exact(w) {
+            texels.extend(row.iter().map(|t| Vec3A::from(*t) * m.scale + add));
+            texels.push(texels[texels.len() - w]);
+        }
+        let stride = w + 1;
         let nv = (h - 1).max(1);
         let mut weights = Vec::with_capacity(w * nv);
         let mut sum = glam::DVec3::ZERO;
@@ -123,10 +131,10 @@ impl LatLong {
             for i in 0..w {
                 let i1 = (i + 1) % w;
                 let corners = [
-                    texels[j0 * w + i],
-                    texels[j0 * w + i1],
-                    texels[j1 * w + i],
-                    texels[j1 * w + i1],
+                    texels[j0 * stride + i],
+                    texels[j0 * stride + i1],
+                    texels[j1 * stride + i],
+                    texels[j1 * stride + i1],
                 ];
                 let peak = corners
                     .iter()
@@ -143,6 +151,9 @@ impl LatLong {
         Some(LatLong {
             w,
             h,
+            w_f: w as f32,
+            h_last_f: (h - 1) as f32,
+            half_texel: 0.5 / w as f32,
             texels,
             to_world,
             from_world: to_world.transpose(),
@@ -167,22 +178,29 @@ impl LatLong {
     /// along v (row 0 at v = 0, the last row at v = 1).
     #[inline]
     fn lookup(&self, u: f32, v: f32) -> Vec3A {
-        let x = u * self.w as f32 - 0.5;
-        let x0 = x.floor();
+        let x = u * self.w_f - 0.5;
+        let x0 = floor(x);
         let fx = x - x0;
-        // Wrapped along u; a u in [0, 1) needs a division only at the seam (x0 = −1).
-        let i0 = match x0 as i64 {
-            i if (0..self.w as i64).contains(&i) => i as usize,
-            i => i.rem_euclid(self.w as i64) as usize,
+        // Wrapped along u; a u in [0, 1) needs a division only at the seam (x0 = −1), out of
+        // line. Inside, x0 is an integer in [0, w) with w < 2³¹: its i32 is exact.
+        let i0 = if x0 >= 0.0 && x0 < self.w_f {
+            x0 as i32 as usize
+        } else {
+            wrap_column(x0, self.w)
         };
-        let i1 = if i0 + 1 == self.w { 0 } else { i0 + 1 };
-        let y = (v * (self.h - 1) as f32).max(0.0);
-        let j0 = (y as usize).min(self.h.saturating_sub(2));
+        let y = (v * self.h_last_f).max(0.0);
+        let j0 = cell_index(y, self.h.max(2) - 1);
         let fy = (y - j0 as f32).clamp(0.0, 1.0);
         let j1 = (j0 + 1).min(self.h - 1);
-        let t = |i: usize, j: usize| self.texels[j * self.w + i];
-        let top = t(i0, j0) * (1.0 - fx) + t(i1, j0) * fx;
-        let bottom = t(i0, j1) * (1.0 - fx) + t(i1, j1) * fx;
+        // Column i0 + 1 is the wrapped right neighbour (the padding column after the last).
+        let stride = self.w + 1;
+        let t = |j: usize| {
+            let row = &self.texels[j * stride + i0..j * stride + i0 + 2];
+            (row[0], row[1])
+        };
+        let ((t00, t10), (t01, t11)) = (t(j0), t(j1));
+        let top = t00 * (1.0 - fx) + t10 * fx;
+        let bottom = t01 * (1.0 - fx) + t11 * fx;
         top * (1.0 - fy) + bottom * fy
     }
 
@@ -190,7 +208,7 @@ impl LatLong {
     #[inline]
     fn cell_coords(&self, u: f32, v: f32) -> [f32; 2] {
         // rem_euclid is the identity on [0, w) (an fmodf call saved for all but the seam).
-        let w = self.w as f32;
+        let w = self.w_f;
         let x = match u * w - 0.5 {
             x if (0.0..w).contains(&x) => x,
             x => x.rem_euclid(w),
@@ -209,7 +227,7 @@ impl LatLong {
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
         let (p, pdf) = self.dist.sample(u);
-        let mut mu = p[0] + 0.5 / self.w as f32;
+        let mut mu = p[0] + self.half_texel;
         if mu >= 1.0 {
             mu -= 1.0;
         }
@@ -233,6 +251,14 @@ impl LatLong {
     }
 }
 
+/// Column of integral `x0` wrapped into [0, w), `(x0 as i64).rem_euclid(w)`: the seam's
+/// slow path of [`LatLong::lookup`].
+#[cold]
+#[inline(never)]
+fn wrap_column(x0: f32, w: usize) -> usize {
+    (x0 as i64).rem_euclid(w as i64) as usize
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,7 +268,8 @@ mod tests {
 
     /// The seam shortcuts (no division inside [0, w)) give the wrapped indices and cell
     /// coordinates of the plain `rem_euclid` forms, bit for bit, across the whole u range and
-    /// just around the seam.
+    /// just around the seam, and the padded texel table gives the plain bilinear lookup in
+    /// every row.
     #[test]
     fn wrapping_along_u_is_the_plain_rem_euclid() {
         let (w, h) = (7u32, 4u32);
@@ -270,9 +297,17 @@ mod tests {
             let fx = xf - x0;
             let i0 = (x0 as i64).rem_euclid(w as i64) as usize;
             let i1 = (i0 + 1) % w as usize;
-            let t = |i: usize| Vec3A::from(map.image.texels[i]);
-            let want = t(i0) * (1.0 - fx) + t(i1) * fx;
-            assert_eq!(ll.lookup(u, 0.0), want, "u {u}");
+            // Every row (the padded texel table repeats each row's first texel at its end).
+            for v in [0.0, 0.2, 0.5, 0.9, 1.0] {
+                let y = v * (h - 1) as f32;
+                let j0 = (y as usize).min(h as usize - 2);
+                let fy = (y - j0 as f32).clamp(0.0, 1.0);
+                let t = |i: usize, j: usize| Vec3A::from(map.image.texels[j * w as usize + i]);
+                let top = t(i0, j0) * (1.0 - fx) + t(i1, j0) * fx;
+                let bottom = t(i0, j0 + 1) * (1.0 - fx) + t(i1, j0 + 1) * fx;
+                let want = top * (1.0 - fy) + bottom * fy;
+                assert_eq!(ll.lookup(u, v), want, "u {u} v {v}");
+            }
         }
     }
 }

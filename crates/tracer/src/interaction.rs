@@ -50,10 +50,21 @@ impl Attributes {
             } else {
                 Vec::new()
             },
+            // A normal that is not finite or is far from unit length disqualifies its
+            // triangles' interpolation (they shade with `ng`): stored as NaN, it turns the
+            // interpolated sum into NaN, which `normalize_or_zero` maps to zero, the same
+            // fallback as checking the three normals on every hit.
             normals: mesh
                 .normals
                 .iter()
                 .map(|&n| Vec3A::from(to_world.map_or(n, |m| m.normal(n))))
+                .map(|n| {
+                    if n.is_finite() && n.length_squared() > 0.5 {
+                        n
+                    } else {
+                        Vec3A::NAN
+                    }
+                })
                 .collect(),
             uvs: mesh.uvs.clone(),
             colors: mesh.colors.iter().map(|&c| Vec3A::from(c)).collect(),
@@ -88,10 +99,10 @@ impl Attributes {
         let idx = self.indices.get(prim as usize);
         let ns = match idx {
             Some(t) if !self.normals.is_empty() => {
+                // An invalid normal is NaN (`Attributes::of`), so ns is zero then.
                 let n = t.map(|k| self.normals[k as usize]);
-                let ok = n.iter().all(|x| x.is_finite() && x.length_squared() > 0.5);
                 let ns = (n[0] * w[0] + n[1] * w[1] + n[2] * w[2]).normalize_or_zero();
-                if ok && ns != Vec3A::ZERO { ns } else { ng }
+                if ns != Vec3A::ZERO { ns } else { ng }
             }
             _ => ng,
         };
@@ -150,6 +161,51 @@ fn dp_duv(v: [Vec3A; 3], uv: [Vec2; 3]) -> [Vec3A; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Shading normals interpolate where all three vertex normals are usable, and fall back
+    /// to the geometric normal where one is not finite or far from unit length, whatever its
+    /// weight.
+    #[test]
+    fn unusable_vertex_normals_shade_with_the_geometric_normal() {
+        use glam::Vec3;
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let tilted = Vec3::new(0.6, 0.0, 0.8);
+        let mesh = Mesh {
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::ONE,
+                Vec3::Z,
+                Vec3::NEG_X,
+            ],
+            indices: vec![[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 5]],
+            normals: vec![
+                up,
+                tilted,
+                up,
+                Vec3::new(f32::NAN, 0.0, 1.0),
+                Vec3::new(0.0, 0.0, 0.5),
+                -tilted,
+            ],
+            ..Default::default()
+        };
+        let attr = Attributes::of(&mesh, None);
+        let v = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
+        let ng = Vec3A::new(0.0, 0.0, 1.0);
+        let b = Vec2::new(0.5, 0.0);
+        let want = (Vec3A::from(up) * 0.5 + Vec3A::from(tilted) * 0.5).normalize();
+        let ns = attr.interpolate(0, b, v, ng).ns;
+        assert!((ns - want).length() < 1e-6, "{ns} vs {want}");
+        // A NaN normal and a short one (length 0.5), both at weight 0 here.
+        for prim in [1, 2] {
+            assert_eq!(attr.interpolate(prim, b, v, ng).ns, ng, "triangle {prim}");
+        }
+        assert_eq!(attr.interpolate(1, Vec2::new(1.0, 0.0), v, ng).ns, ng);
+        let tilted_n = Vec3A::from(tilted).normalize();
+        let ns = attr.interpolate(3, Vec2::new(1.0, 0.0), v, ng).ns;
+        assert!((ns - tilted_n).length() < 1e-6, "{ns} vs {tilted_n}");
+    }
 
     #[test]
     fn dp_duv_follows_the_uv_parameterisation() {

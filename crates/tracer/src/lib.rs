@@ -21,6 +21,7 @@ mod emitter;
 mod envmap;
 mod eye;
 mod film;
+mod fmath;
 mod geometry;
 mod guiding;
 mod integrator;
