@@ -183,13 +183,20 @@ fn chunk_seed(key: u64, chunk: u32) -> u64 {
 pub struct StreamSeeds {
     key: u64,
     chunks: [ChunkSeeds; LOW_DISCREPANCY_CHUNKS as usize],
+    /// The hashed chunks' seeds, from chunk [`LOW_DISCREPANCY_CHUNKS`] on: a path of the
+    /// default depth (8) draws up to 15 chunks, most of them hashed.
+    deep: [u64; DEEP_CHUNKS],
 }
+
+/// How many hashed chunks' seeds [`StreamSeeds`] keeps (later ones are hashed when entered).
+const DEEP_CHUNKS: usize = 10;
 
 impl StreamSeeds {
     pub fn new(key: u64) -> StreamSeeds {
         StreamSeeds {
             key,
             chunks: std::array::from_fn(|c| ChunkSeeds::new(key, c as u32)),
+            deep: std::array::from_fn(|c| chunk_seed(key, LOW_DISCREPANCY_CHUNKS + c as u32)),
         }
     }
 }
@@ -246,12 +253,15 @@ impl<'a> SampleStream<'a> {
     #[inline]
     fn enter_chunk(&mut self, chunk: u32) {
         self.chunk = chunk;
-        let key = match self.seeds {
-            Seeds::Key(key) => key,
-            Seeds::Shared(s) => s.key,
-        };
         if chunk >= LOW_DISCREPANCY_CHUNKS {
-            let a = mix64(chunk_seed(key, chunk) ^ self.index as u64);
+            let seed = match self.seeds {
+                Seeds::Key(key) => chunk_seed(key, chunk),
+                Seeds::Shared(s) => match s.deep.get((chunk - LOW_DISCREPANCY_CHUNKS) as usize) {
+                    Some(&seed) => seed,
+                    None => chunk_seed(s.key, chunk),
+                },
+            };
+            let a = mix64(seed ^ self.index as u64);
             let b = mix64(a);
             self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32].map(unit);
             return;
@@ -339,7 +349,8 @@ mod tests {
             for i in [0u32, 1, 2, 15, 16, 1000, u32::MAX] {
                 let mut a = SampleStream::new(key, i);
                 let mut b = SampleStream::seeded(&seeds, i);
-                for d in 0..(4 * LOW_DISCREPANCY_CHUNKS + 12) {
+                // Past the low-discrepancy chunks and the hashed ones whose seeds are kept.
+                for d in 0..(4 * (LOW_DISCREPANCY_CHUNKS + DEEP_CHUNKS as u32) + 12) {
                     if d % 5 == 0 {
                         a.start_group();
                         b.start_group();
