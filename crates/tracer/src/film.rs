@@ -383,6 +383,7 @@ impl Pass<'_> {
         let seeds = StreamSeeds::new(key);
         // The aperture has its own stream, so pinhole renders keep their samples.
         let lens_seeds = thin_lens.then(|| StreamSeeds::new(hash_key(&[key, 0x1E45])));
+        let mut scratch = self.scene.geometry.scratch();
         for i in self.samples.clone() {
             let mut s = SampleStream::seeded(&seeds, i);
             // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
@@ -392,6 +393,7 @@ impl Pass<'_> {
                 .map_or([0.5; 2], |k| SampleStream::seeded(k, i).next_2d());
             let (origin, d) = view.ray(basis, x as f32 + j[0], y as f32 + j[1], lens);
             let p = trace_guided(
+                &mut scratch,
                 self.scene,
                 (origin, d),
                 Origin::Camera,

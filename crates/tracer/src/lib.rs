@@ -43,6 +43,7 @@ mod principled_thin;
 mod revision;
 mod sampler;
 mod scene_data;
+mod scramble4;
 mod shadow;
 mod texture;
 mod traverse;

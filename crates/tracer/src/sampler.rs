@@ -11,6 +11,8 @@
 //! samples of a pixel a (0, k, 2)-net in each pair of dimensions, so power-of-two sample
 //! counts are stratified.
 
+use crate::scramble4::{scramble4, unit};
+
 /// Direction numbers of the first four Sobol dimensions (Joe–Kuo parameters).
 const SOBOL: [[u32; 32]; 4] = sobol_directions();
 
@@ -65,7 +67,7 @@ fn sobol(mut index: u32, dim: usize) -> u32 {
 }
 
 #[inline]
-fn laine_karras(mut x: u32, seed: u32) -> u32 {
+pub(crate) fn laine_karras(mut x: u32, seed: u32) -> u32 {
     x = x.wrapping_add(seed);
     x ^= x.wrapping_mul(0x6c50_b47c);
     x ^= x.wrapping_mul(0xb82f_1e52);
@@ -100,7 +102,7 @@ pub fn hash_key(words: &[u64]) -> u64 {
 /// *bit-reversed* index: `rev(sobol(i)) = XOR_k REV_SOBOL_BYTES[k][byte k of rev(i)]`. Both
 /// maps are linear over GF(2), so working in the reversed domain lets Owen scrambling
 /// (reverse, Laine–Karras, reverse) skip two of its three bit reversals. 16 KiB, const-built.
-static REV_SOBOL_BYTES: [[[u32; 4]; 256]; 4] = rev_sobol_byte_tables();
+pub(crate) static REV_SOBOL_BYTES: [[[u32; 4]; 256]; 4] = rev_sobol_byte_tables();
 
 const fn rev_sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
     let mut t = [[[0u32; 4]; 256]; 4];
@@ -130,7 +132,7 @@ const fn rev_sobol_byte_tables() -> [[[u32; 4]; 256]; 4] {
 }
 
 /// The four Sobol dimensions of the index whose bit reversal is `rev_index`, bit-reversed.
-#[inline]
+#[cfg(test)]
 fn rev_sobol4(rev_index: u32) -> [u32; 4] {
     let b = rev_index.to_le_bytes();
     let t = |k: usize| &REV_SOBOL_BYTES[k][b[k] as usize];
@@ -181,13 +183,20 @@ fn chunk_seed(key: u64, chunk: u32) -> u64 {
 pub struct StreamSeeds {
     key: u64,
     chunks: [ChunkSeeds; LOW_DISCREPANCY_CHUNKS as usize],
+    /// The hashed chunks' seeds, from chunk [`LOW_DISCREPANCY_CHUNKS`] on: a path of the
+    /// default depth (8) draws up to 15 chunks, most of them hashed.
+    deep: [u64; DEEP_CHUNKS],
 }
+
+/// How many hashed chunks' seeds [`StreamSeeds`] keeps (later ones are hashed when entered).
+const DEEP_CHUNKS: usize = 10;
 
 impl StreamSeeds {
     pub fn new(key: u64) -> StreamSeeds {
         StreamSeeds {
             key,
             chunks: std::array::from_fn(|c| ChunkSeeds::new(key, c as u32)),
+            deep: std::array::from_fn(|c| chunk_seed(key, LOW_DISCREPANCY_CHUNKS + c as u32)),
         }
     }
 }
@@ -210,8 +219,8 @@ pub struct SampleStream<'a> {
     rev_index: u32,
     dim: u32,
     chunk: u32,
-    /// The scrambled values of the current chunk's four dimensions, as Q0.32.
-    values: [u32; 4],
+    /// The scrambled values of the current chunk's four dimensions.
+    values: [f32; 4],
 }
 
 impl<'a> SampleStream<'a> {
@@ -233,7 +242,7 @@ impl<'a> SampleStream<'a> {
             rev_index: index.reverse_bits(),
             dim: 0,
             chunk: u32::MAX,
-            values: [0; 4],
+            values: [0.0; 4],
         };
         s.enter_chunk(0);
         s
@@ -244,14 +253,17 @@ impl<'a> SampleStream<'a> {
     #[inline]
     fn enter_chunk(&mut self, chunk: u32) {
         self.chunk = chunk;
-        let key = match self.seeds {
-            Seeds::Key(key) => key,
-            Seeds::Shared(s) => s.key,
-        };
         if chunk >= LOW_DISCREPANCY_CHUNKS {
-            let a = mix64(chunk_seed(key, chunk) ^ self.index as u64);
+            let seed = match self.seeds {
+                Seeds::Key(key) => chunk_seed(key, chunk),
+                Seeds::Shared(s) => match s.deep.get((chunk - LOW_DISCREPANCY_CHUNKS) as usize) {
+                    Some(&seed) => seed,
+                    None => chunk_seed(s.key, chunk),
+                },
+            };
+            let a = mix64(seed ^ self.index as u64);
             let b = mix64(a);
-            self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32];
+            self.values = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32].map(unit);
             return;
         }
         let seeds = match self.seeds {
@@ -261,10 +273,7 @@ impl<'a> SampleStream<'a> {
         // Shuffle the index (nested uniform scramble = reverse, Laine-Karras, reverse) and look
         // the point up, both in the reversed domain; then Owen-scramble each coordinate.
         let rev_shuffled = laine_karras(self.rev_index, seeds.chunk as u32);
-        let rv = rev_sobol4(rev_shuffled);
-        for ((out, x), seed) in self.values.iter_mut().zip(rv).zip(seeds.dims) {
-            *out = laine_karras(x, seed).reverse_bits();
-        }
+        self.values = scramble4(rev_shuffled, &seeds.dims);
     }
 
     /// Skips to the start of the next 4-D chunk (keeps 2-D requests on aligned pairs).
@@ -282,8 +291,7 @@ impl<'a> SampleStream<'a> {
         }
         let v = self.values[(self.dim % 4) as usize];
         self.dim += 1;
-        // 24 bits so the result is exactly representable and strictly below 1.
-        (v >> 8) as f32 * (1.0 / 16_777_216.0)
+        v
     }
 
     /// The next chunk's four values (what four calls of [`SampleStream::next_1d`] after
@@ -296,7 +304,7 @@ impl<'a> SampleStream<'a> {
             self.enter_chunk(chunk);
         }
         self.dim += 4;
-        self.values.map(|v| (v >> 8) as f32 * (1.0 / 16_777_216.0))
+        self.values
     }
 
     /// The next 2-D point; always drawn from dimensions (0,1) or (2,3) of a chunk.
@@ -341,7 +349,8 @@ mod tests {
             for i in [0u32, 1, 2, 15, 16, 1000, u32::MAX] {
                 let mut a = SampleStream::new(key, i);
                 let mut b = SampleStream::seeded(&seeds, i);
-                for d in 0..(4 * LOW_DISCREPANCY_CHUNKS + 12) {
+                // Past the low-discrepancy chunks and the hashed ones whose seeds are kept.
+                for d in 0..(4 * (LOW_DISCREPANCY_CHUNKS + DEEP_CHUNKS as u32) + 12) {
                     if d % 5 == 0 {
                         a.start_group();
                         b.start_group();
