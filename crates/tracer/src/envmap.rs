@@ -69,6 +69,19 @@ impl Environment {
         }
     }
 
+    /// [`Environment::radiance`] and [`Environment::pdf`] of `d` from one map lookup of its
+    /// (u, v) (the same values, bit for bit).
+    #[inline]
+    pub fn radiance_and_pdf(&self, d: Vec3A) -> (Vec3A, f32) {
+        match self {
+            Environment::Constant(c) => (*c, 1.0 / (4.0 * PI)),
+            Environment::Map(m) => {
+                let (u, v, sin_t) = m.uv(d);
+                (m.lookup(u, v), m.pdf_uv(u, v, sin_t))
+            }
+        }
+    }
+
     /// Draws a direction with the 2-D sample `u`.
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
@@ -309,5 +322,44 @@ mod tests {
                 assert_eq!(ll.lookup(u, v), want, "u {u} v {v}");
             }
         }
+    }
+
+    /// One (u, v) lookup for both gives the radiance and density of the two separate calls,
+    /// bit for bit, on a rotated map and on a constant environment.
+    #[test]
+    fn radiance_and_pdf_equal_the_separate_calls() {
+        let (w, h) = (9u32, 5u32);
+        let texels = (0..w * h)
+            .map(|k| Rgb::new(1.0 + k as f32, 0.5 * (k % 7) as f32, 0.1))
+            .collect();
+        let map = EnvironmentMap {
+            filename: PathBuf::from("t.exr"),
+            image: Arc::new(Image {
+                width: w,
+                height: h,
+                texels,
+            }),
+            scale: 2.0,
+            to_world: glam::Mat3::from_rotation_y(0.7) * glam::Mat3::from_rotation_x(0.3),
+        };
+        let envs = [
+            Environment::new(None, Some(&map)).unwrap(),
+            Environment::new(Some(Vec3A::splat(0.25)), None).unwrap(),
+        ];
+        let mut positive = 0;
+        for env in &envs {
+            for k in 0..2000 {
+                let (a, b) = (k as f32 * 0.618_034 % 1.0, k as f32 * 0.754_877_7 % 1.0);
+                let z = 1.0 - 2.0 * a;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * PI * b;
+                let d = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+                let (li, pdf) = env.radiance_and_pdf(d);
+                assert_eq!(li, env.radiance(d), "{d}");
+                assert_eq!(pdf.to_bits(), env.pdf(d).to_bits(), "{d}");
+                positive += (pdf > 0.0) as usize;
+            }
+        }
+        assert!(positive > 3900, "{positive}");
     }
 }

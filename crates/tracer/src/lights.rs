@@ -139,10 +139,27 @@ impl LightSet {
     /// direction `d` to the environment.
     pub fn pdf_env(&self, x: Vec3A, n: Option<Vec3A>, d: Vec3A) -> f32 {
         let Some(env) = &self.env else { return 0.0 };
+        self.pdf_env_given(x, n, d, || env.pdf(d))
+    }
+
+    /// [`LightSet::pdf_env`] with the environment's own density of `d` supplied by the caller
+    /// (who may have it from the same map lookup as the radiance), asked for only where no
+    /// portal serves `x`.
+    #[inline]
+    pub fn pdf_env_given(
+        &self,
+        x: Vec3A,
+        n: Option<Vec3A>,
+        d: Vec3A,
+        env_pdf: impl FnOnce() -> f32,
+    ) -> f32 {
+        if self.env.is_none() {
+            return 0.0;
+        }
         let p = if self.portals.is_empty() {
-            env.pdf(d)
+            env_pdf()
         } else {
-            self.portals.pdf(x, d).unwrap_or_else(|| env.pdf(d))
+            self.portals.pdf(x, d).unwrap_or_else(env_pdf)
         };
         self.picker.prob(self.picker.units.len() - 1, x, n) * p
     }

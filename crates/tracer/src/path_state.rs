@@ -333,13 +333,16 @@ impl<'g> PathState<'g> {
     #[inline]
     pub fn escape(&mut self, lights: &LightSet) {
         let Some(env) = &lights.env else { return };
-        let w = match self.prev {
-            Origin::Camera => 1.0,
+        let (li, w) = match self.prev {
+            Origin::Camera => (env.radiance(self.d), 1.0),
             Origin::Sampled { pdf } => {
-                power_heuristic(pdf, lights.pdf_env(self.prev_p, self.prev_n, self.d))
+                // One map lookup of the direction for its radiance and its density.
+                let (li, env_pdf) = env.radiance_and_pdf(self.d);
+                let p = lights.pdf_env_given(self.prev_p, self.prev_n, self.d, || env_pdf);
+                (li, power_heuristic(pdf, p))
             }
         };
-        let c = self.beta * env.radiance(self.d) * w;
+        let c = self.beta * li * w;
         if self.specular_chain {
             self.out.l += c;
         } else {
