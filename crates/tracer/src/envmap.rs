@@ -279,6 +279,26 @@ mod tests {
     use std::path::PathBuf;
     use std::sync::Arc;
 
+    /// A `w` × `h` map of `texels` (row by row).
+    fn test_map(
+        w: u32,
+        h: u32,
+        texels: Vec<Rgb>,
+        scale: f32,
+        to_world: glam::Mat3,
+    ) -> EnvironmentMap {
+        EnvironmentMap {
+            filename: PathBuf::from("t.exr"),
+            image: Arc::new(Image {
+                width: w,
+                height: h,
+                texels,
+            }),
+            scale,
+            to_world,
+        }
+    }
+
     /// The seam shortcuts (no division inside [0, w)) give the wrapped indices and cell
     /// coordinates of the plain `rem_euclid` forms, bit for bit, across the whole u range and
     /// just around the seam, and the padded texel table gives the plain bilinear lookup in
@@ -287,16 +307,7 @@ mod tests {
     fn wrapping_along_u_is_the_plain_rem_euclid() {
         let (w, h) = (7u32, 4u32);
         let texels = (0..w * h).map(|k| Rgb::splat(1.0 + k as f32)).collect();
-        let map = EnvironmentMap {
-            filename: PathBuf::from("t.exr"),
-            image: Arc::new(Image {
-                width: w,
-                height: h,
-                texels,
-            }),
-            scale: 1.0,
-            to_world: glam::Mat3::IDENTITY,
-        };
+        let map = test_map(w, h, texels, 1.0, glam::Mat3::IDENTITY);
         let ll = LatLong::new(&map, Vec3A::ZERO).unwrap();
         let wf = w as f32;
         let mut us: Vec<f32> = (0..=4000).map(|k| k as f32 / 4000.0).collect();
@@ -332,16 +343,8 @@ mod tests {
         let texels = (0..w * h)
             .map(|k| Rgb::new(1.0 + k as f32, 0.5 * (k % 7) as f32, 0.1))
             .collect();
-        let map = EnvironmentMap {
-            filename: PathBuf::from("t.exr"),
-            image: Arc::new(Image {
-                width: w,
-                height: h,
-                texels,
-            }),
-            scale: 2.0,
-            to_world: glam::Mat3::from_rotation_y(0.7) * glam::Mat3::from_rotation_x(0.3),
-        };
+        let turn = glam::Mat3::from_rotation_y(0.7) * glam::Mat3::from_rotation_x(0.3);
+        let map = test_map(w, h, texels, 2.0, turn);
         let envs = [
             Environment::new(None, Some(&map)).unwrap(),
             Environment::new(Some(Vec3A::splat(0.25)), None).unwrap(),
