@@ -296,20 +296,9 @@ impl Bsdf {
                 let f = fresnel_conductor3(wi.dot(m), eta, k) * specular;
                 f * (d * ggx.g(wi, wo, m) / (4.0 * wi.z * wo.z))
             }
-            Bsdf::Plastic {
-                diffuse,
-                ggx,
-                eta,
-                inv_eta2,
-                table,
-                ..
-            } => {
+            Bsdf::Plastic { table, .. } => {
                 let m = (wo + wi).normalize();
-                let spec = fresnel_dielectric(wi.dot(m), eta) * ggx.d(m) * ggx.g(wi, wo, m)
-                    / (4.0 * wi.z * wo.z);
-                let ti = table.transmittance(wi.z);
-                let to = table.transmittance(wo.z);
-                Vec3A::splat(spec) + diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
+                self.plastic_value(wo, wi, m, table.transmittance(wo.z))
             }
         }
     }
@@ -344,11 +333,38 @@ impl Bsdf {
         }
     }
 
-    fn plastic_spec_prob(wo: Vec3A, table: &PlasticTable, spec_weight: f32) -> f32 {
-        let t = table.transmittance(wo.z);
-        let ps = (1.0 - t) * spec_weight;
-        let pd = t * (1.0 - spec_weight);
+    /// A plastic's probability of sampling its specular lobe, from the coating's
+    /// transmittance `to` towards wo.
+    fn plastic_spec_prob(to: f32, spec_weight: f32) -> f32 {
+        let ps = (1.0 - to) * spec_weight;
+        let pd = to * (1.0 - spec_weight);
         ps / (ps + pd)
+    }
+
+    /// A plastic's density of `wi` (half vector `m`), given its specular probability `ps`.
+    fn plastic_pdf(ggx: &Microfacet, wo: Vec3A, wi: Vec3A, m: Vec3A, ps: f32) -> f32 {
+        let spec = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
+        ps * spec + (1.0 - ps) * wi.z * FRAC_1_PI
+    }
+
+    /// A `Plastic`'s value at `wi` (half vector `m`), given the coating's transmittance `to`
+    /// towards wo.
+    fn plastic_value(&self, wo: Vec3A, wi: Vec3A, m: Vec3A, to: f32) -> Vec3A {
+        let Bsdf::Plastic {
+            diffuse,
+            ggx,
+            eta,
+            inv_eta2,
+            table,
+            ..
+        } = *self
+        else {
+            unreachable!("plastic_value of a {self:?}")
+        };
+        let spec =
+            fresnel_dielectric(wi.dot(m), eta) * ggx.d(m) * ggx.g(wi, wo, m) / (4.0 * wi.z * wo.z);
+        let ti = table.transmittance(wi.z);
+        Vec3A::splat(spec) + diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
     }
 
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
@@ -383,10 +399,9 @@ impl Bsdf {
                 spec_weight,
                 ..
             } => {
-                let ps = Self::plastic_spec_prob(wo, table, spec_weight);
+                let ps = Self::plastic_spec_prob(table.transmittance(wo.z), spec_weight);
                 let m = (wo + wi).normalize();
-                let spec = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
-                ps * spec + (1.0 - ps) * wi.z * FRAC_1_PI
+                Self::plastic_pdf(&ggx, wo, wi, m, ps)
             }
         }
     }
@@ -437,20 +452,16 @@ impl Bsdf {
     #[inline]
     fn sample_plastic(&self, wo: Vec3A, u_lobe: f32, u: [f32; 2]) -> Option<BsdfSample> {
         let Bsdf::Plastic {
-            diffuse,
             ggx,
-            eta,
-            inv_eta2,
             spec_weight,
             table,
+            ..
         } = *self
         else {
             unreachable!("sample_plastic of a {self:?}")
         };
-        // `plastic_spec_prob`, keeping T(wo) for `eval`'s diffuse term.
         let to = table.transmittance(wo.z);
-        let ps = (1.0 - to) * spec_weight;
-        let ps = ps / (ps + to * (1.0 - spec_weight));
+        let ps = Self::plastic_spec_prob(to, spec_weight);
         let wi = if u_lobe < ps {
             reflect(wo, ggx.sample(wo, u))
         } else {
@@ -460,14 +471,8 @@ impl Bsdf {
             return None;
         }
         let m = (wo + wi).normalize();
-        let spec_pdf = ggx.pdf(wo, m) / (4.0 * wo.dot(m).abs().max(1e-12));
-        let pdf = ps * spec_pdf + (1.0 - ps) * wi.z * FRAC_1_PI;
-        BsdfSample::of_lobe(wi, pdf, || {
-            let spec = fresnel_dielectric(wi.dot(m), eta) * ggx.d(m) * ggx.g(wi, wo, m)
-                / (4.0 * wi.z * wo.z);
-            let ti = table.transmittance(wi.z);
-            Vec3A::splat(spec) + diffuse * (FRAC_1_PI * inv_eta2 * ti * to)
-        })
+        let pdf = Self::plastic_pdf(&ggx, wo, wi, m, ps);
+        BsdfSample::of_lobe(wi, pdf, || self.plastic_value(wo, wi, m, to))
     }
 }
 

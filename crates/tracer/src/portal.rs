@@ -270,22 +270,14 @@ mod tests {
         // Towards the first window's middle (x = −3, y 0.7..2.5, z −5..−3.4), and past it.
         let o = Vec3A::new(1.0, 1.0, -4.2);
         let to = |t: Vec3A| (t - o).normalize();
-        assert_eq!(
-            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -4.2))),
-            Some(true)
-        );
-        assert_eq!(
-            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -2.0))),
-            Some(true)
-        );
-        assert_eq!(
-            p.lets_through(o, to(Vec3A::new(-3.0, 1.6, -3.0))),
-            Some(false)
-        );
-        assert_eq!(
-            p.lets_through(o, to(Vec3A::new(-3.0, 3.0, -4.2))),
-            Some(false)
-        );
+        for (target, through) in [
+            (Vec3A::new(-3.0, 1.6, -4.2), true),
+            (Vec3A::new(-3.0, 1.6, -2.0), true),
+            (Vec3A::new(-3.0, 1.6, -3.0), false),
+            (Vec3A::new(-3.0, 3.0, -4.2), false),
+        ] {
+            assert_eq!(p.lets_through(o, to(target)), Some(through), "{target}");
+        }
         // Away from the wall, and straight up: no portal on the way.
         assert_eq!(p.lets_through(o, Vec3A::X), Some(false));
         assert_eq!(p.lets_through(o, Vec3A::Y), Some(false));
