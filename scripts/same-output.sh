@@ -26,6 +26,9 @@ run() {
         --out "$out/sequence" --no-progress-bar >"$out/sequence.log" 2>&1
     "$bin" render builtin:cornell-box --width 48 --height 48 --spp 8 --estimators all \
         --eye-samples 512 --out "$out/render" >"$out/render.log" 2>&1
+    # The interior: its sky and sun take the environment's and the sphere's sampling paths.
+    "$bin" render builtin:interior --width 48 --height 27 --spp 8 --estimators all \
+        --eye-samples 512 --out "$out/interior" >"$out/interior.log" 2>&1
     "$bin" paper --quick --out "$out/paper" --work "$out/paper-work" >"$out/paper.log" 2>&1
     # Two chunks of the same frames, merged and reported; the plan of a chunked run.
     for i in 0 1; do

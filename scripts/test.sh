@@ -7,7 +7,10 @@
 #   3. the coherence report in headless Chromium (Debian's package, installed by
 #      scripts/install-chromium.sh; required as root, skipped without chromium otherwise
 #      unless EYEADAPT_REQUIRE_CHROMIUM=1); screenshots go to target/browser/;
-#   4. the Slurm end-to-end test on a real single-node Slurm (Debian packages,
+#   4. the same files from one binary on Debian 12's and 13's glibc (scripts/glibc-determinism.sh;
+#      their libc6 packages from Debian's archive; required as root, skipped without network
+#      otherwise unless EYEADAPT_REQUIRE_GLIBC=1);
+#   5. the Slurm end-to-end test on a real single-node Slurm (Debian packages,
 #      installed by scripts/slurm/local-cluster.sh; needs root, skipped otherwise
 #      unless EYEADAPT_REQUIRE_SLURM=1).
 # Prints 'N passed, M failed' for the stages and exits non-zero if any failed.
@@ -80,6 +83,16 @@ report_in_browser() {
   EYEADAPT=$PWD/target/release/eyeadapt bash tests/browser/report.sh
 }
 
+glibc_versions() {
+  local rc=0
+  bash scripts/glibc-determinism.sh target/release/eyeadapt || rc=$?
+  if [[ $rc == 3 && $(id -u) -ne 0 && ${EYEADAPT_REQUIRE_GLIBC:-0} != 1 ]]; then
+    echo "skipped: Debian's archive is out of reach (set EYEADAPT_REQUIRE_GLIBC=1 to fail instead)"
+    return 0
+  fi
+  return $rc
+}
+
 slurm_e2e() {
   if [[ $(id -u) -ne 0 && ${EYEADAPT_REQUIRE_SLURM:-0} != 1 ]]; then
     echo "skipped: the Slurm end-to-end test needs root (set EYEADAPT_REQUIRE_SLURM=1 to fail instead)"
@@ -91,6 +104,7 @@ slurm_e2e() {
 stage "cargo tests" cargo_tests
 stage "adaptation.csv in pandas" pandas_csv
 stage "report in headless Chromium" report_in_browser
+stage "same bits on Debian 12's and 13's glibc" glibc_versions
 stage "Slurm end-to-end" slurm_e2e
 echo "test.sh: $passed passed, $failed failed"
 ((failed == 0))

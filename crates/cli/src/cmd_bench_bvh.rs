@@ -34,9 +34,9 @@ fn preset_name(p: &BvhBuildParams) -> &'static str {
 
 /// Terrain height: a few octaves of sines, smooth like a real scan, with detail at several scales.
 fn height(x: f32, z: f32) -> f32 {
-    0.15 * (3.1 * x + 0.7).sin() * (2.3 * z).cos()
-        + 0.05 * (11.0 * x + 5.0 * z).sin()
-        + 0.02 * (37.0 * x - 23.0 * z).cos()
+    0.15 * libm::sinf(3.1 * x + 0.7) * libm::cosf(2.3 * z)
+        + 0.05 * libm::sinf(11.0 * x + 5.0 * z)
+        + 0.02 * libm::cosf(37.0 * x - 23.0 * z)
 }
 
 /// `triangles` triangles of a kx×kz grid of quads over [-1, 1]², displaced by [`height`]:
@@ -88,7 +88,7 @@ fn direction(r: u64) -> Vec3A {
     let z = 1.0 - 2.0 * u;
     let s = (1.0 - z * z).max(0.0).sqrt();
     let phi = std::f32::consts::TAU * v;
-    Vec3A::new(s * phi.cos(), z, s * phi.sin())
+    Vec3A::new(s * libm::cosf(phi), z, s * libm::sinf(phi))
 }
 
 /// Seconds for `f` and what it returned.
@@ -144,7 +144,7 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     let fwd = (Vec3A::ZERO - eye).normalize();
     let right = fwd.cross(Vec3A::Y).normalize();
     let up = right.cross(fwd);
-    let half = (15.0f32).to_radians().tan(); // a 30° field of view: the mesh fills most of it
+    let half = libm::tanf((15.0f32).to_radians()); // a 30° field of view: the mesh fills most of it
     let primary = ray_set(|i| {
         let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
         let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;

@@ -70,14 +70,14 @@ pub const L_A_SRGB: f64 = 64.0 / std::f64::consts::PI * 0.2;
 
 /// CIECAM02: `D = F · [1 − (1/3.6) · exp((−L_A − 42)/92)]`, clamped to [0, 1].
 pub fn degree_of_adaptation(f: f64, l_a: f64) -> f64 {
-    (f * (1.0 - (1.0 / 3.6) * ((-l_a - 42.0) / 92.0).exp())).clamp(0.0, 1.0)
+    (f * (1.0 - (1.0 / 3.6) * libm::exp((-l_a - 42.0) / 92.0))).clamp(0.0, 1.0)
 }
 
 /// CIECAM97s, \[GRC13\] Eq. 2: `D = F · [1 − 1/(1 + 2 L_A^{1/4} + L_A²/300)]`,
 /// clamped to [0, 1].
 pub fn degree_cie97s(f: f64, l_a: f64) -> f64 {
     let l_a = l_a.max(0.0);
-    (f * (1.0 - 1.0 / (1.0 + 2.0 * l_a.powf(0.25) + l_a * l_a / 300.0))).clamp(0.0, 1.0)
+    (f * (1.0 - 1.0 / (1.0 + 2.0 * libm::pow(l_a, 0.25) + l_a * l_a / 300.0))).clamp(0.0, 1.0)
 }
 
 #[cfg(test)]

@@ -375,7 +375,7 @@ fn gaussian_kernel(sigma: f64) -> Vec<f64> {
     }
     let radius = (3.0 * sigma).ceil() as i64;
     let weights: Vec<f64> = (-radius..=radius)
-        .map(|k| (-(k * k) as f64 / (2.0 * sigma * sigma)).exp())
+        .map(|k| libm::exp(-(k * k) as f64 / (2.0 * sigma * sigma)))
         .collect();
     let total: f64 = weights.iter().sum();
     weights.into_iter().map(|w| w / total).collect()
@@ -445,7 +445,7 @@ fn scale(a: [f64; 2], s: f64) -> [f64; 2] {
 }
 
 fn norm(a: [f64; 2]) -> f64 {
-    a[0].hypot(a[1])
+    libm::hypot(a[0], a[1])
 }
 
 #[cfg(test)]
@@ -547,11 +547,11 @@ mod tests {
         for f0 in [1.0, 0.3] {
             let m = metrics(&series(2400, |i| {
                 [
-                    0.2 + amplitude * (2.0 * PI * f0 * i as f64 / FPS).sin(),
+                    0.2 + amplitude * libm::sin(2.0 * PI * f0 * i as f64 / FPS),
                     0.47,
                 ]
             }));
-            let gain = (-2.0 * PI * PI * f0 * f0 * DEFAULT_SIGMA_S * DEFAULT_SIGMA_S).exp();
+            let gain = libm::exp(-2.0 * PI * PI * f0 * f0 * DEFAULT_SIGMA_S * DEFAULT_SIGMA_S);
             let expected = amplitude * (1.0 - gain) / 2f64.sqrt();
             let error = (m.hf_rms - expected).abs() / expected;
             assert!(
@@ -638,7 +638,7 @@ mod tests {
         assert_eq!(k.len(), 2 * 36 + 1);
         assert!((k.iter().sum::<f64>() - 1.0).abs() < 1e-15);
         assert!(
-            (k[36] / k[0] - (4.5f64).exp()).abs() < 1e-9,
+            (k[36] / k[0] - libm::exp(4.5f64)).abs() < 1e-9,
             "tail weight exp(-9/2)"
         );
         assert_eq!(gaussian_kernel(0.1).len(), 3);

@@ -278,7 +278,7 @@ impl std::error::Error for FilterError {}
 /// `α = 1 − e^{−Δt/τ}`: the fraction of the way to the new input covered in Δt (1 for τ = 0).
 pub fn smoothing_factor(dt: f64, tau: f64) -> f64 {
     // −expm1 keeps full precision for the tiny α of slow components (α_s ≈ 1e-3).
-    -(-dt / tau).exp_m1()
+    -libm::expm1(-dt / tau)
 }
 
 /// The state of the filter; feed it frames in time order with [`AdaptationFilter::step`].
@@ -353,7 +353,7 @@ impl AdaptationFilter {
                     *t = time;
                 }
                 let mixed: [f64; 3] =
-                    std::array::from_fn(|c| (p.a * f[c] + (1.0 - p.a) * s[c]).exp());
+                    std::array::from_fn(|c| libm::exp(p.a * f[c] + (1.0 - p.a) * s[c]));
                 let w = mul(&CAT02_INV, mixed);
                 w.map(|c| c / w[1])
             }
@@ -377,7 +377,7 @@ pub fn filter_series(
 fn log_cones(xyz: [f64; 3]) -> ([f64; 3], bool) {
     let cones = mul(&CAT02, xyz);
     let clamped = cones.iter().any(|&c| c < MIN_CONE);
-    (cones.map(|c| c.max(MIN_CONE).ln()), clamped)
+    (cones.map(|c| libm::log(c.max(MIN_CONE))), clamped)
 }
 
 fn mul(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
@@ -406,7 +406,7 @@ mod tests {
     fn progress(w: [f64; 3]) -> f64 {
         let g = |w: [f64; 3]| {
             let c = mul(&CAT02, w);
-            (c[0] / c[2]).ln()
+            libm::log(c[0] / c[2])
         };
         (g(w) - g(A)) / (g(D65) - g(A))
     }
@@ -415,13 +415,13 @@ mod tests {
     fn progress_m(w: [f64; 3]) -> f64 {
         let g = |w: [f64; 3]| {
             let c = mul(&CAT02, w);
-            (c[1] / c[2]).ln()
+            libm::log(c[1] / c[2])
         };
         (g(w) - g(A)) / (g(D65) - g(A))
     }
 
     fn remaining(p: FilterParams, t: f64) -> f64 {
-        p.a * (-t / p.tau_f).exp() + (1.0 - p.a) * (-t / p.tau_s).exp()
+        p.a * libm::exp(-t / p.tau_f) + (1.0 - p.a) * libm::exp(-t / p.tau_s)
     }
 
     /// t with r(t) = 0.5, by bisection (r decreases monotonically).
@@ -451,7 +451,7 @@ mod tests {
     fn alpha_slow_for_25_fps_and_41_s() {
         assert!((smoothing_factor(1.0 / 25.0, 41.0) - 9.751e-4).abs() < 5e-8);
         assert_eq!(smoothing_factor(0.04, 0.0), 1.0);
-        assert!((smoothing_factor(1.0, 1.0) - (1.0 - (-1.0f64).exp())).abs() < 1e-16);
+        assert!((smoothing_factor(1.0, 1.0) - (1.0 - libm::exp(-1.0f64))).abs() < 1e-16);
     }
 
     #[test]

@@ -15,7 +15,7 @@ const ORANGE: DVec3 = DVec3::new(1.0, 0.6, 0.3);
 /// A smooth-plus-rough neutral texture in [0.25, 1.75], deterministic.
 fn texture(x: usize, y: usize) -> f64 {
     let (xf, yf) = (x as f64, y as f64);
-    let smooth = 0.5 * (0.7 * xf + 0.3 * yf).sin() * (0.45 * yf - 0.2 * xf).cos();
+    let smooth = 0.5 * libm::sin(0.7 * xf + 0.3 * yf) * libm::cos(0.45 * yf - 0.2 * xf);
     let rough = ((x * 7919 + y * 104_729) % 97) as f64 / 97.0 - 0.5;
     1.0 + smooth + 0.5 * rough
 }

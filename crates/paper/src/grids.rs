@@ -186,7 +186,7 @@ const JAMB_Z: f64 = -0.6;
 /// The point 4 m from `p` along yaw `deg` (from +x towards +z), level.
 fn ahead(p: [f64; 3], deg: f64) -> String {
     let a = deg.to_radians();
-    v3(p[0] + 4.0 * a.cos(), p[1], p[2] + 4.0 * a.sin())
+    v3(p[0] + 4.0 * libm::cos(a), p[1], p[2] + 4.0 * libm::sin(a))
 }
 
 /// One camera place of case 5 and its four gazes, by the text's definitions of the views:
@@ -195,7 +195,7 @@ fn ahead(p: [f64; 3], deg: f64) -> String {
 /// 40° further (the doorway out of the 36.9° wide frustum: "the second room is not visible"),
 /// and the supplementary view faces away from the doorway.
 fn case5_place(label: String, p: [f64; 3]) -> Level {
-    let yaw = |z: f64| (z - p[2]).atan2(DOOR_X - p[0]).to_degrees();
+    let yaw = |z: f64| libm::atan2(z - p[2], DOOR_X - p[0]).to_degrees();
     let jamb = yaw(JAMB_Z);
     level(
         label,
@@ -290,7 +290,7 @@ mod tests {
                 .split(',')
                 .map(|x| x.trim().parse().unwrap())
                 .collect();
-            (v[2] + 2.0).atan2(v[0] - 1.0).to_degrees()
+            libm::atan2(v[2] + 2.0, v[0] - 1.0).to_degrees()
         };
         for k in ["look_at_1", "look_at_2", "look_at_3", "look_at_4"] {
             let rule = l.fill.iter().find(|(n, _)| *n == k).unwrap().1.as_str();

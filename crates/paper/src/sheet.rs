@@ -60,7 +60,7 @@ pub fn auto_exposure(frame: &Frame) -> f32 {
     ys.sort_by(f64::total_cmp);
     let p99 = ys[((ys.len() - 1) as f64 * 0.99).round() as usize];
     if p99 > 0.0 {
-        (0.9 / p99).log2() as f32
+        libm::log2(0.9 / p99) as f32
     } else {
         0.0
     }

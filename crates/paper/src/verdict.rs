@@ -225,7 +225,7 @@ pub fn num(v: f64) -> String {
     if !(1e-4..1e5).contains(&a) {
         return format!("{v:.2e}");
     }
-    let digits = (2 - a.log10().floor() as i32).max(0) as usize;
+    let digits = (2 - libm::log10(a).floor() as i32).max(0) as usize;
     format!("{v:.digits$}")
 }
 

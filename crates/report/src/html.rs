@@ -29,7 +29,7 @@ pub fn fmt(v: f64) -> String {
     }
     let a = v.abs();
     if (1e-3..1e5).contains(&a) {
-        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        let decimals = (2 - libm::log10(a).floor() as i32).max(0) as usize;
         format!("{v:.decimals$}")
     } else {
         format!("{v:.2e}")
@@ -70,7 +70,7 @@ fn fmt_ratio(v: f64) -> String {
     if !v.is_finite() {
         return "–".into();
     }
-    let decimals = (1 - v.abs().max(1e-9).log10().floor() as i32).max(0) as usize;
+    let decimals = (1 - libm::log10(v.abs().max(1e-9)).floor() as i32).max(0) as usize;
     format!("{v:.decimals$}")
 }
 

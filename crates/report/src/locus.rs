@@ -69,7 +69,7 @@ mod tests {
         ];
         for (t, want) in reference {
             let got = planck_uv(t);
-            let d = (got[0] - want[0]).hypot(got[1] - want[1]);
+            let d = libm::hypot(got[0] - want[0], got[1] - want[1]);
             assert!(d < 4e-4, "{t} K: {got:?} vs {want:?} (duv {d})");
         }
     }

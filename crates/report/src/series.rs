@@ -197,7 +197,7 @@ pub fn steps(s: &Series) -> Vec<f64> {
         let prev = k.checked_sub(1).map(|j| &s.points[j]);
         let d = match (prev, p.uv) {
             (Some(q), Some(b)) if q.frame + 1 == p.frame => {
-                q.uv.map_or(f64::NAN, |a| (b[0] - a[0]).hypot(b[1] - a[1]))
+                q.uv.map_or(f64::NAN, |a| libm::hypot(b[0] - a[0], b[1] - a[1]))
             }
             _ => f64::NAN,
         };

@@ -91,7 +91,7 @@ pub fn ratio(
     if !value.is_finite() {
         return Ratio::UNDEFINED;
     }
-    let block = (n as f64).cbrt().ceil() as usize;
+    let block = libm::cbrt(n as f64).ceil() as usize;
     let starts = n - block + 1;
     let mut rng = Rng(seed);
     let mut samples: Vec<f64> = (0..RESAMPLES)
@@ -170,7 +170,7 @@ mod tests {
     fn ratio_of_a_scaled_copy_is_the_scale_with_a_tight_interval() {
         let pairs: Vec<(f64, f64)> = (0..60)
             .map(|k| {
-                let b = 1.0 + (k as f64 * 0.7).sin().abs();
+                let b = 1.0 + libm::sin(k as f64 * 0.7).abs();
                 (0.5 * b, b)
             })
             .collect();
@@ -187,8 +187,8 @@ mod tests {
         // eye's steps are noisy halves of the other's: the interval has width, holds the value.
         let pairs: Vec<(f64, f64)> = (0..120)
             .map(|k| {
-                let b = 1.0 + (k as f64).sin().abs();
-                (b * (0.5 + 0.3 * (k as f64 * 2.3).cos()), b)
+                let b = 1.0 + libm::sin(k as f64).abs();
+                (b * (0.5 + 0.3 * libm::cos(k as f64 * 2.3)), b)
             })
             .collect();
         let a = ratio(&pairs, mean, 7);

@@ -47,7 +47,7 @@ pub fn check_lat_long(image: &Image) -> Result<(), String> {
 /// Why the linear part `m` cannot be an environment map's `to_world`, if it cannot: it must
 /// be a rotation (a uniform scale is divided out and allowed; a mirror or shear is not).
 pub fn rotation_part(m: Mat3) -> Result<Mat3, String> {
-    let s = m.determinant().abs().cbrt();
+    let s = libm::cbrtf(m.determinant().abs());
     if !(s.is_finite() && s > 0.0) {
         return Err("collapses directions (its determinant is 0)".into());
     }

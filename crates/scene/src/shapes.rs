@@ -97,9 +97,9 @@ pub(crate) fn uv_sphere(segments: usize) -> Mesh {
             };
             let phi = TAU * u;
             let d = glam::DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.sin() * phi.sin(),
-                theta.cos(),
+                libm::sin(theta) * libm::cos(phi),
+                libm::sin(theta) * libm::sin(phi),
+                libm::cos(theta),
             );
             m.positions.push(d.as_vec3());
             m.normals.push(d.as_vec3());
@@ -130,7 +130,7 @@ pub(crate) fn disk(segments: usize) -> Mesh {
     let mut m = Mesh::default();
     for j in 0..=segments {
         let u = j as f64 / segments as f64;
-        let (s, c) = (TAU * u).sin_cos();
+        let (s, c) = libm::sincos(TAU * u);
         m.positions.push(Vec3::new(c as f32, s as f32, 0.0));
         m.uvs.push(Vec2::new(1.0, u as f32));
         m.positions.push(Vec3::ZERO);
@@ -151,7 +151,7 @@ pub(crate) fn cylinder(segments: usize) -> Mesh {
     let mut m = Mesh::default();
     for j in 0..=segments {
         let u = j as f64 / segments as f64;
-        let (s, c) = (TAU * u).sin_cos();
+        let (s, c) = libm::sincos(TAU * u);
         let n = Vec3::new(c as f32, s as f32, 0.0);
         for z in [0.0, 1.0] {
             m.positions.push(n + Vec3::Z * z);

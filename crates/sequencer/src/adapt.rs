@@ -85,7 +85,7 @@ impl EyeOptions {
     pub fn precise_enough(&self, mean_rgb: DVec3, cov_rgb: DMat3) -> bool {
         self.target_std_err_uv > 0.0
             && uv_std_err(mean_rgb, cov_rgb)
-                .is_some_and(|[u, v]| u.hypot(v) <= self.target_std_err_uv)
+                .is_some_and(|[u, v]| libm::hypot(u, v) <= self.target_std_err_uv)
     }
 }
 

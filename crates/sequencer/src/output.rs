@@ -280,13 +280,13 @@ pub fn srgb_encode(c: f32) -> f32 {
     if c <= 0.003_130_8 {
         12.92 * c
     } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
+        1.055 * libm::powf(c, 1.0 / 2.4) - 0.055
     }
 }
 
 /// 8-bit sRGB bytes of a linear image with the documented preview curve.
 pub fn preview_bytes(rgb: &[[f32; 3]], exposure_ev: f32) -> Vec<u8> {
-    let k = 2f32.powf(exposure_ev);
+    let k = libm::powf(2f32, exposure_ev);
     rgb.iter()
         .flat_map(|p| {
             p.map(|c| {

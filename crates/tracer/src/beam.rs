@@ -92,7 +92,7 @@ impl TexturedSpot {
             1.0
         } else {
             // Linear in angle between the beam width and the cutoff (Mitsuba's `spot`).
-            (self.cone - c.clamp(-1.0, 1.0).acos()) * self.inv_transition
+            (self.cone - libm::acosf(c.clamp(-1.0, 1.0))) * self.inv_transition
         };
         let k = 0.5 / (l.z * self.tan_cone);
         let uv = Vec2::new(0.5 + l.x * k, 0.5 + l.y * k);

@@ -9,9 +9,10 @@ use crate::plastic_table::PlasticTable;
 use crate::pplastic::PPlastic;
 use crate::principled::Principled;
 use crate::principled_thin::PrincipledThin;
+use crate::trig::sincos_quarter_pi;
 use eyeadapt_scene::Distribution;
 use glam::Vec3A;
-use std::f32::consts::{FRAC_1_PI, PI};
+use std::f32::consts::FRAC_1_PI;
 
 #[derive(Clone, Copy, Debug)]
 pub enum Bsdf {
@@ -104,15 +105,17 @@ fn fresnel_conductor3(c: f32, eta: Vec3A, k: Vec3A) -> Vec3A {
 pub fn cosine_hemisphere(u: [f32; 2]) -> Vec3A {
     let a = 2.0 * u[0] - 1.0;
     let b = 2.0 * u[1] - 1.0;
-    let (r, phi) = if a == 0.0 && b == 0.0 {
+    // φ = π/4·(b/a), or π/2 − π/4·(a/b), whose cosine and sine are the sine and cosine of
+    // π/4·(a/b).
+    let (x, y) = if a == 0.0 && b == 0.0 {
         (0.0, 0.0)
     } else if a.abs() > b.abs() {
-        (a, PI / 4.0 * (b / a))
+        let (s, c) = sincos_quarter_pi(b / a);
+        (a * c, a * s)
     } else {
-        (b, PI / 2.0 - PI / 4.0 * (a / b))
+        let (s, c) = sincos_quarter_pi(a / b);
+        (b * s, b * c)
     };
-    let x = r * phi.cos();
-    let y = r * phi.sin();
     Vec3A::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
 }
 

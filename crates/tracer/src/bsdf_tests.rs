@@ -7,6 +7,7 @@ use crate::dielectric::RoughDielectric;
 use crate::plastic_table::PlasticTable;
 use crate::pplastic::PPlastic;
 use crate::sampler::{SampleStream, hash_key};
+use std::f32::consts::PI;
 
 fn rough_glass(alpha: f32, d: Distribution, eta: f32) -> Bsdf {
     Bsdf::RoughDielectric(RoughDielectric {
@@ -187,7 +188,7 @@ fn sampling_is_consistent_with_eval_and_pdf() {
             let z = 2.0 * uu[0] - 1.0;
             let r = (1.0 - z * z).max(0.0).sqrt();
             let phi = 2.0 * PI * uu[1];
-            let wi = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+            let wi = Vec3A::new(r * libm::cosf(phi), r * libm::sinf(phi), z);
             uniform += b.eval(wo, wi) * wi.z.abs() * 4.0 * PI;
         }
         let sampled = sampled / n as f32;
@@ -286,7 +287,11 @@ pub(crate) fn assert_sampling_follows_pdf(b: &Bsdf, wo: Vec3A, key: u64) {
                 let z = -1.0 + dz * (it as f64 + (a as f64 + 0.5) / SUB as f64);
                 let p = dp * (ip as f64 + (c as f64 + 0.5) / SUB as f64);
                 let r = (1.0 - z * z).max(0.0).sqrt();
-                let wi = Vec3A::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
+                let wi = Vec3A::new(
+                    (r * libm::cos(p)) as f32,
+                    (r * libm::sin(p)) as f32,
+                    z as f32,
+                );
                 *e += b.pdf(wo, wi) as f64 * dz * dp / (SUB * SUB) as f64;
             }
         }
@@ -322,7 +327,7 @@ pub(crate) fn assert_sampling_follows_pdf(b: &Bsdf, wo: Vec3A, key: u64) {
 
 fn bin(w: Vec3A, nt: usize, np: usize) -> usize {
     let it = (((w.z + 1.0) * 0.5 * nt as f32) as usize).min(nt - 1);
-    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+    let phi = libm::atan2f(w.y, w.x).rem_euclid(2.0 * PI);
     let ip = ((phi / (2.0 * PI) * np as f32) as usize).min(np - 1);
     it * np + ip
 }
@@ -369,19 +374,19 @@ fn smooth_glass_reflects_plus_transmits_one() {
         };
         for k in 0..50 {
             let th = k as f32 / 50.0 * 1.55;
-            let wo = Vec3A::new(th.sin(), 0.0, th.cos());
+            let wo = Vec3A::new(libm::sinf(th), 0.0, libm::cosf(th));
             let r = b.sample(wo, 0.0, [0.5; 2]).unwrap();
             let t = b.sample(wo, 0.999_999, [0.5; 2]).unwrap();
             assert!(r.delta && r.wi.z > 0.0 && (r.weight - Vec3A::ONE).length() < 1e-6);
             let total = if t.wi.z < 0.0 {
                 // Snell: sin θt = sin θi / η, and the weight is 1/η².
                 let sin_t = (t.wi.x * t.wi.x + t.wi.y * t.wi.y).sqrt();
-                assert!((sin_t * eta - th.sin()).abs() < 1e-4);
+                assert!((sin_t * eta - libm::sinf(th)).abs() < 1e-4);
                 assert!((t.weight.x * eta * eta - 1.0).abs() < 1e-5);
                 r.pdf + t.pdf
             } else {
                 // Total internal reflection: both picks reflect.
-                assert!(eta < 1.0 && th.sin() > eta);
+                assert!(eta < 1.0 && libm::sinf(th) > eta);
                 r.pdf
             };
             assert!((total - 1.0).abs() < 1e-6, "eta {eta}, θ {th}: {total}");

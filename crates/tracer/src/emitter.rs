@@ -153,7 +153,7 @@ impl DeltaLight {
                     intensity
                 } else {
                     // Linear in angle between the beam width and the cutoff (Mitsuba's `spot`).
-                    intensity * ((cone - c.clamp(-1.0, 1.0).acos()) * inv_transition)
+                    intensity * ((cone - libm::acosf(c.clamp(-1.0, 1.0))) * inv_transition)
                 }
             }
         }

@@ -10,6 +10,7 @@
 use crate::distribution2d::Distribution2D;
 use crate::emitter::luminance;
 use crate::fmath::{cell_index, floor};
+use crate::trig::sincos_turns;
 use eyeadapt_scene::EnvironmentMap;
 use glam::{Mat3A, Vec3A};
 use std::f32::consts::PI;
@@ -89,9 +90,9 @@ impl Environment {
             Environment::Constant(c) => {
                 let z = 1.0 - 2.0 * u[0];
                 let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = 2.0 * PI * u[1];
+                let (sin_phi, cos_phi) = sincos_turns(u[1]);
                 Some(EnvSample {
-                    wi: Vec3A::new(r * phi.cos(), r * phi.sin(), z),
+                    wi: Vec3A::new(r * cos_phi, r * sin_phi, z),
                     li: *c,
                     pdf: 1.0 / (4.0 * PI),
                 })
@@ -138,8 +139,8 @@ impl LatLong {
         let mut sum = glam::DVec3::ZERO;
         for j in 0..nv {
             let (j0, j1) = (j.min(h - 1), (j + 1).min(h - 1));
-            let c0 = (PI * j as f32 / nv as f32).cos();
-            let c1 = (PI * (j + 1) as f32 / nv as f32).cos();
+            let c0 = libm::cosf(PI * j as f32 / nv as f32);
+            let c1 = libm::cosf(PI * (j + 1) as f32 / nv as f32);
             let band = (c0 - c1).max(0.0);
             for i in 0..w {
                 let i1 = (i + 1) % w;
@@ -179,12 +180,12 @@ impl LatLong {
     #[inline]
     fn uv(&self, d: Vec3A) -> (f32, f32, f32) {
         let l = (self.from_world * d).normalize();
-        let mut u = l.x.atan2(-l.z) * (0.5 / PI);
+        let mut u = libm::atan2f(l.x, -l.z) * (0.5 / PI);
         if u < 0.0 {
             u += 1.0;
         }
         let y = l.y.clamp(-1.0, 1.0);
-        (u, y.acos() / PI, (1.0 - y * y).max(0.0).sqrt())
+        (u, libm::acosf(y) / PI, (1.0 - y * y).max(0.0).sqrt())
     }
 
     /// Bilinear radiance at (u, v): between texel centres along u (wrapping), between rows
@@ -245,11 +246,11 @@ impl LatLong {
             mu -= 1.0;
         }
         let v = p[1];
-        let (sin_t, cos_t) = (PI * v).sin_cos();
+        let (sin_t, cos_t) = sincos_turns(0.5 * v);
         if sin_t <= 0.0 || pdf <= 0.0 {
             return None;
         }
-        let (sin_p, cos_p) = (2.0 * PI * mu).sin_cos();
+        let (sin_p, cos_p) = sincos_turns(mu);
         let local = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
         let wi = (self.to_world * local).normalize();
         // Radiance and density as a ray escaping along `wi` will see them (rounding in the
@@ -356,7 +357,7 @@ mod tests {
                 let z = 1.0 - 2.0 * a;
                 let r = (1.0 - z * z).max(0.0).sqrt();
                 let phi = 2.0 * PI * b;
-                let d = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+                let d = Vec3A::new(r * libm::cosf(phi), r * libm::sinf(phi), z);
                 let (li, pdf) = env.radiance_and_pdf(d);
                 assert_eq!(li, env.radiance(d), "{d}");
                 assert_eq!(pdf.to_bits(), env.pdf(d).to_bits(), "{d}");

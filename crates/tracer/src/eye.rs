@@ -25,6 +25,7 @@ use crate::integrator::{Origin, PathSettings, power_heuristic, trace};
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use crate::shadow::shadow_transmittance;
+use crate::trig::sincos_turns;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -178,9 +179,10 @@ pub fn eye_sensor_until(
             }
         }
         // A cardioid-distributed path.
-        let (mu, phi) = sample_cardioid(u_dir);
+        let (mu, _) = sample_cardioid(u_dir);
+        let (sin_phi, cos_phi) = sincos_turns(u_dir[1]);
         let st = (1.0 - mu * mu).max(0.0).sqrt();
-        let dir = (r * (st * phi.cos()) + u * (st * phi.sin()) + axis * mu).normalize();
+        let dir = (r * (st * cos_phi) + u * (st * sin_phi) + axis * mu).normalize();
         if (!settings.fov_only || view.in_frustum(basis, dir)) && mu > -1.0 {
             let pdf = (1.0 + mu) / (4.0 * PI);
             let p = trace(scene, eye, dir, Origin::Sampled { pdf }, &mut s, path, None);

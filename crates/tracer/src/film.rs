@@ -13,6 +13,7 @@ use crate::guiding::{Guiding, Record, SdTree, Tally, passes, split_threshold};
 use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace_guided};
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
+use crate::trig::sincos_turns;
 use eyeadapt_scene::{PixelFilter, Projection};
 use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
@@ -72,7 +73,7 @@ impl View {
             } => (shift_x * self.width as f32, shift_y * self.height as f32),
             _ => (0.0, 0.0),
         };
-        let tan = (self.fov_deg.to_radians() * 0.5).tan();
+        let tan = libm::tanf(self.fov_deg.to_radians() * 0.5);
         let aspect = self.width as f32 / self.height as f32;
         let sx = (2.0 * (x + dx) / self.width as f32 - 1.0) * tan * aspect;
         let sy = (1.0 - 2.0 * (y + dy) / self.height as f32) * tan;
@@ -95,7 +96,7 @@ impl View {
         let origin = Vec3A::from(self.position);
         let focus = origin + d * focus_distance;
         let rad = aperture_radius * lens[0].sqrt();
-        let (s, c) = (2.0 * std::f32::consts::PI * lens[1]).sin_cos();
+        let (s, c) = sincos_turns(lens[1]);
         let o = origin + r * (rad * c) + u * (rad * s);
         (o, (focus - o).normalize())
     }

@@ -294,7 +294,7 @@ mod tests {
                 let o = lo + (hi - lo) * Vec3A::new(0.2 + 0.6 * a, 0.2 + 0.6 * b, 0.5);
                 let (z, phi) = (1.0 - 2.0 * c, std::f32::consts::TAU * e);
                 let r = (1.0 - z * z).max(0.0).sqrt();
-                let d = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+                let d = Vec3A::new(r * libm::cosf(phi), r * libm::sinf(phi), z);
                 let (mut s1, mut s2) = (s, s);
                 let settings = PathSettings::default();
                 let fresh = trace(&scene, o, d, Origin::Camera, &mut s1, settings, None);

@@ -49,6 +49,7 @@ mod texture;
 mod traverse;
 mod tri4;
 mod triangle;
+mod trig;
 
 pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};

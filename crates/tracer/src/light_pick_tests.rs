@@ -79,7 +79,11 @@ fn many_lights() -> (LightPicker, Vec<AreaTri>) {
         let [a, b] = r(i);
         let z = 1.0 - 2.0 * a;
         let s = (1.0 - z * z).max(0.0).sqrt();
-        Vec3A::new(s * (2.0 * PI * b).cos(), s * (2.0 * PI * b).sin(), z)
+        Vec3A::new(
+            s * libm::cosf(2.0 * PI * b),
+            s * libm::sinf(2.0 * PI * b),
+            z,
+        )
     };
     let pos = |i: u32| {
         let ([a, b], [c, _]) = (r(i), r(i + 7777));
@@ -111,8 +115,8 @@ fn many_lights() -> (LightPicker, Vec<AreaTri>) {
             intensity: Vec3A::splat(2.0),
             cos_cone: 0.8,
             cos_falloff: 0.9,
-            cone: 0.8f32.acos(),
-            inv_transition: 1.0 / (0.8f32.acos() - 0.9f32.acos()),
+            cone: libm::acosf(0.8f32),
+            inv_transition: 1.0 / (libm::acosf(0.8f32) - libm::acosf(0.9f32)),
         });
     }
     deltas.push(DeltaLight::Directional {
@@ -146,7 +150,7 @@ fn the_light_tree_keeps_every_light_that_can_contribute_and_probabilities_exact(
         let z = 1.0 - 2.0 * d;
         let phi = 2.0 * PI * st.next_1d();
         let s = (1.0 - z * z).max(0.0).sqrt();
-        let n = (i % 3 != 0).then(|| Vec3A::new(s * phi.cos(), s * phi.sin(), z));
+        let n = (i % 3 != 0).then(|| Vec3A::new(s * libm::cosf(phi), s * libm::sinf(phi), z));
         let probs: Vec<f32> = (0..p.units.len()).map(|k| p.prob(k, x, n)).collect();
         let sum: f32 = probs.iter().sum();
         let any = (0..p.units.len()).any(|k| importance(&p.bounds[k], x, n) > 0.0);

@@ -66,8 +66,11 @@ impl LightBounds {
 
 /// The narrowest cone (of those that grow one to reach the other) containing both cones.
 fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
-    let (ta, tb) = (a.1.clamp(-1.0, 1.0).acos(), b.1.clamp(-1.0, 1.0).acos());
-    let td = a.0.dot(b.0).clamp(-1.0, 1.0).acos();
+    let (ta, tb) = (
+        libm::acosf(a.1.clamp(-1.0, 1.0)),
+        libm::acosf(b.1.clamp(-1.0, 1.0)),
+    );
+    let td = libm::acosf(a.0.dot(b.0).clamp(-1.0, 1.0));
     if (tb - ta).abs() >= std::f32::consts::PI || td + tb <= ta {
         return if ta >= tb { a } else { b };
     }
@@ -85,9 +88,9 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
         return (a.0, -1.0);
     }
     let turn = to - ta;
-    let axis = (a.0 * turn.cos() + perp / len * turn.sin()).normalize();
+    let axis = (a.0 * libm::cosf(turn) + perp / len * libm::sinf(turn)).normalize();
     // A little wider than computed, so that rounding never leaves a child's cone outside.
-    (axis, (to + 1e-4).min(std::f32::consts::PI).cos())
+    (axis, libm::cosf((to + 1e-4).min(std::f32::consts::PI)))
 }
 
 /// A binary node while building: its bounds, how many lights it holds, and a leaf's light

@@ -302,8 +302,8 @@ fn delta_light(l: &Light, textures: &[Texture]) -> DeltaLight {
                 position: position.into(),
                 direction: direction.normalize().into(),
                 intensity: intensity.into(),
-                cos_cone: cone.cos(),
-                cos_falloff: fall.cos(),
+                cos_cone: libm::cosf(cone),
+                cos_falloff: libm::cosf(fall),
                 cone,
                 inv_transition,
             }
@@ -328,11 +328,11 @@ fn delta_light(l: &Light, textures: &[Texture]) -> DeltaLight {
                 position: position.into(),
                 to_local: beam::to_local(frame),
                 intensity: intensity.into(),
-                cos_cone: cone.cos(),
-                cos_falloff: fall.cos(),
+                cos_cone: libm::cosf(cone),
+                cos_falloff: libm::cosf(fall),
                 cone,
                 inv_transition,
-                tan_cone: cone.tan(),
+                tan_cone: libm::tanf(cone),
                 image: beam::Image::new(eyeadapt_scene::Param::Texture(texture), textures),
             })
         }
@@ -462,7 +462,7 @@ mod tests {
     fn square_irradiance(s: f32, h: f32) -> f64 {
         let a = (s / (2.0 * h)) as f64;
         let q = (1.0 + a * a).sqrt();
-        let f = (2.0 * a / q * (a / q).atan()) / (2.0 * std::f64::consts::PI);
+        let f = (2.0 * a / q * libm::atan(a / q)) / (2.0 * std::f64::consts::PI);
         std::f64::consts::PI * 4.0 * f
     }
 

@@ -5,6 +5,7 @@
 //!
 //! Isotropic surfaces keep their own, shorter formulas (and bits): the anisotropic ones are
 //! used only where `alpha_u ≠ alpha_v`.
+use crate::trig::sincos_turns;
 use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -58,7 +59,7 @@ impl Microfacet {
         let c2 = m.z * m.z;
         if self.beckmann {
             let tan2 = (1.0 - c2).max(0.0) / c2;
-            (-tan2 / a2).exp() / (PI * a2 * c2 * c2)
+            libm::expf(-tan2 / a2) / (PI * a2 * c2 * c2)
         } else {
             let t = c2 * (a2 - 1.0) + 1.0;
             a2 / (PI * t * t)
@@ -111,11 +112,11 @@ impl Microfacet {
             return self.sample_beckmann_anisotropic(u);
         }
         if self.beckmann {
-            let tan2 = -self.alpha * self.alpha * (1.0 - u[0]).max(1e-12).ln();
+            let tan2 = -self.alpha * self.alpha * libm::logf((1.0 - u[0]).max(1e-12));
             let cos = 1.0 / (1.0 + tan2).sqrt();
             let sin = (1.0 - cos * cos).max(0.0).sqrt();
-            let phi = 2.0 * PI * u[1];
-            Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos)
+            let (sin_phi, cos_phi) = sincos_turns(u[1]);
+            Vec3A::new(sin * cos_phi, sin * sin_phi, cos)
         } else {
             self.sample_visible(wi, u)
         }
@@ -144,8 +145,8 @@ impl Microfacet {
     /// Samples a visible GGX normal seen from `wi` (Heitz 2018, "Sampling the GGX
     /// Distribution of Visible Normals"). `wi.z > 0`.
     fn sample_visible(&self, wi: Vec3A, u: [f32; 2]) -> Vec3A {
-        let phi = 2.0 * PI * u[1];
-        self.visible_normal(&self.visible_frame(wi), u[0].sqrt(), phi.cos(), phi.sin())
+        let (sin_phi, cos_phi) = sincos_turns(u[1]);
+        self.visible_normal(&self.visible_frame(wi), u[0].sqrt(), cos_phi, sin_phi)
     }
 
     /// The part of [`Self::sample`] for GGX that depends on `wi` alone (`wi.z > 0`).
@@ -190,7 +191,7 @@ impl Microfacet {
         let (x, y) = (m.x / au, m.y / av);
         let z2 = m.z * m.z;
         if self.beckmann {
-            (-(x * x + y * y) / z2).exp() / (PI * au * av * z2 * z2)
+            libm::expf(-(x * x + y * y) / z2) / (PI * au * av * z2 * z2)
         } else {
             let t = x * x + y * y + z2;
             1.0 / (PI * au * av * t * t)
@@ -223,12 +224,12 @@ impl Microfacet {
     /// tan²θ = −ln(1 − u₀)/A(φ).
     fn sample_beckmann_anisotropic(&self, u: [f32; 2]) -> Vec3A {
         let (au, av) = (self.alpha, self.alpha_v);
-        let psi = 2.0 * PI * u[1];
-        let (sp, cp) = (av * psi.sin(), au * psi.cos());
+        let (sin_psi, cos_psi) = sincos_turns(u[1]);
+        let (sp, cp) = (av * sin_psi, au * cos_psi);
         let r = (sp * sp + cp * cp).sqrt();
         let (sin_phi, cos_phi) = (sp / r, cp / r);
         let a = cos_phi * cos_phi / (au * au) + sin_phi * sin_phi / (av * av);
-        let tan2 = -(1.0 - u[0]).max(1e-12).ln() / a;
+        let tan2 = -libm::logf((1.0 - u[0]).max(1e-12)) / a;
         let cos = 1.0 / (1.0 + tan2).sqrt();
         let sin = (1.0 - cos * cos).max(0.0).sqrt();
         Vec3A::new(sin * cos_phi, sin * sin_phi, cos)
@@ -339,8 +340,11 @@ mod tests {
                     let st = (1.0 - ct * ct).max(0.0).sqrt();
                     for j in 0..np {
                         let phi = (j as f64 + 0.5) / np as f64 * 2.0 * std::f64::consts::PI;
-                        let m =
-                            Vec3A::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
+                        let m = Vec3A::new(
+                            (st * libm::cos(phi)) as f32,
+                            (st * libm::sin(phi)) as f32,
+                            ct as f32,
+                        );
                         let dw = 2.0 * t / nt as f64 * 2.0 * std::f64::consts::PI / np as f64;
                         s += g.d(m) as f64 * ct * dw;
                     }
@@ -356,7 +360,7 @@ mod tests {
             let iso = Microfacet::new(0.3, d);
             for k in 0..20 {
                 let th = k as f32 / 20.0 * 1.5;
-                let w = Vec3A::new(th.sin() * 0.6, th.sin() * 0.8, th.cos());
+                let w = Vec3A::new(libm::sinf(th) * 0.6, libm::sinf(th) * 0.8, libm::cosf(th));
                 let (a, b) = (iso.d(w), iso.d_anisotropic(w));
                 assert!(
                     (a - b).abs() <= 1e-4 * a.max(1.0),

@@ -16,10 +16,10 @@
 //! Tables are interned: [`PlasticTable::get`] returns one `'static` table per distinct key, so
 //! a [`crate::Bsdf`] carries a pointer, not the 64 values.
 use crate::microfacet::{Microfacet, fresnel_dielectric, fresnel_refract};
+use crate::trig::sincos_turns;
 use eyeadapt_scene::Distribution;
 use glam::Vec3A;
 use rayon::prelude::*;
-use std::f32::consts::PI;
 use std::sync::Mutex;
 
 /// Number of tabulated cosines (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
@@ -152,9 +152,10 @@ impl Square {
             radius: u.iter().map(|u| u.sqrt()).collect(),
             azimuth: u
                 .iter()
-                .map(|u| {
-                    let phi = 2.0 * PI * u;
-                    (phi.cos(), phi.sin())
+                .map(|&u| {
+                    // The azimuth as `Microfacet::sample_visible` computes it.
+                    let (sin_phi, cos_phi) = sincos_turns(u);
+                    (cos_phi, sin_phi)
                 })
                 .collect(),
             u,
@@ -249,7 +250,7 @@ fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut nodes = vec![0.0; n];
     let mut weights = vec![0.0; n];
     for i in 0..n {
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut x = libm::cos(std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5));
         let mut dp = 1.0;
         for _ in 0..100 {
             let (mut p0, mut p1) = (1.0, x);

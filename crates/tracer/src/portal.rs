@@ -318,10 +318,10 @@ mod tests {
         let mut sum = 0.0f64;
         for i in 0..nt {
             let theta = (i as f32 + 0.5) / nt as f32 * PI;
-            let (st, ct) = theta.sin_cos();
+            let (st, ct) = libm::sincosf(theta);
             for j in 0..np {
                 let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
-                sum += f(Vec3A::new(st * phi.cos(), ct, st * phi.sin())) * st as f64;
+                sum += f(Vec3A::new(st * libm::cosf(phi), ct, st * libm::sinf(phi))) * st as f64;
             }
         }
         sum * (PI as f64 / nt as f64) * (2.0 * PI as f64 / np as f64)

@@ -2,6 +2,7 @@
 //! after Mitsuba 3's `principledhelpers.h` and Burley's 2012/2015 course notes: an anisotropic
 //! GGX distribution turned to the surface's tangent, the GTR1 clearcoat distribution, Schlick's
 //! Fresnel, and the Disney diffuse and sheen lobes. Local frame: the shading normal is +z.
+use crate::trig::sincos_turns;
 use glam::Vec3A;
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -106,10 +107,10 @@ impl AnisoGgx {
         };
         let t2 = vh.cross(t1);
         let r = u[0].sqrt();
-        let phi = 2.0 * PI * u[1];
-        let p1 = r * phi.cos();
+        let (sin_phi, cos_phi) = sincos_turns(u[1]);
+        let p1 = r * cos_phi;
         let s = 0.5 * (1.0 + vh.z);
-        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
+        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * sin_phi;
         let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
         let m = Vec3A::new(self.ax * nh.x, self.ay * nh.y, nh.z.max(1e-6)).normalize();
         self.shading(m)
@@ -133,7 +134,7 @@ impl Gtr1 {
 
     pub fn d(&self, m: Vec3A) -> f32 {
         let a2 = self.alpha * self.alpha;
-        let d = (a2 - 1.0) / (PI * a2.ln() * (1.0 + (a2 - 1.0) * m.z * m.z));
+        let d = (a2 - 1.0) / (PI * libm::logf(a2) * (1.0 + (a2 - 1.0) * m.z * m.z));
         if d * m.z > 1e-20 { d } else { 0.0 }
     }
 
@@ -144,10 +145,10 @@ impl Gtr1 {
     pub fn sample(&self, u: [f32; 2]) -> Vec3A {
         let phi = 2.0 * PI * u[0];
         let a2 = self.alpha * self.alpha;
-        let cos2 = (1.0 - a2.powf(1.0 - u[1])) / (1.0 - a2);
+        let cos2 = (1.0 - libm::powf(a2, 1.0 - u[1])) / (1.0 - a2);
         let sin = (1.0 - cos2).max(0.0).sqrt();
         let cos = cos2.max(0.0).sqrt();
-        Vec3A::new(phi.cos() * sin, phi.sin() * sin, cos)
+        Vec3A::new(libm::cosf(phi) * sin, libm::sinf(phi) * sin, cos)
     }
 }
 

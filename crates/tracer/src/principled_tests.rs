@@ -215,7 +215,7 @@ fn albedos(b: &Bsdf, wo: Vec3A, n: u32) -> (Vec3A, Vec3A, Vec3A) {
         let z = 2.0 * uu[0] - 1.0;
         let r = (1.0 - z * z).max(0.0).sqrt();
         let phi = 2.0 * PI * uu[1];
-        let wi = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+        let wi = Vec3A::new(r * libm::cosf(phi), r * libm::sinf(phi), z);
         uniform += b.eval(wo, wi) * wi.z.abs() * 4.0 * PI;
     }
     let n = n as f32;

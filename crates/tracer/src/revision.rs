@@ -25,4 +25,7 @@
 ///    the portals show (scenes with `[[portals]]`).
 /// 6: behind light portals a directional light's importance drops where its direction
 ///    crosses no portal.
-pub const RENDER_REVISION: u32 = 6;
+/// 7: every transcendental function is the `libm` crate's or the tracer's own (`trig.rs`)
+///    instead of the C library's, so that nodes with different glibc versions give the same
+///    bits (every scene, in the last bits).
+pub const RENDER_REVISION: u32 = 7;

@@ -311,7 +311,7 @@ mod tests {
             for i in 0..40 {
                 let p = |a: usize, b: usize| {
                     let (x, z) = (a as f32 * 0.1, b as f32 * 0.1);
-                    Vec3A::new(x, 0.2 * (3.0 * x).sin() * (2.0 * z).cos(), z)
+                    Vec3A::new(x, 0.2 * libm::sinf(3.0 * x) * libm::cosf(2.0 * z), z)
                 };
                 tris.push(Triangle {
                     v0: p(i, j),

@@ -419,7 +419,7 @@ mod tests {
                 i as f32 / n as f32 * 4.0 - 2.0,
                 j as f32 / n as f32 * 4.0 - 2.0,
             );
-            Vec3A::new(x, 0.3 * (2.0 * x).sin() * (3.0 * z).cos(), z)
+            Vec3A::new(x, 0.3 * libm::sinf(2.0 * x) * libm::cosf(3.0 * z), z)
         };
         let mut tris = Vec::new();
         for j in 0..n {

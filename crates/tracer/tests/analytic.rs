@@ -276,7 +276,8 @@ fn split_sphere(
             let theta = std::f32::consts::PI * (half * n_theta / 2 + i) as f32 / n_theta as f32;
             for j in 0..n_phi {
                 let phi = 2.0 * std::f32::consts::PI * j as f32 / n_phi as f32;
-                let d = f * theta.cos() + (r * phi.cos() + u * phi.sin()) * theta.sin();
+                let d = f * libm::cosf(theta)
+                    + (r * libm::cosf(phi) + u * libm::sinf(phi)) * libm::sinf(theta);
                 mesh.positions.push(center + d * radius);
             }
         }

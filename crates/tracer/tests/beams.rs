@@ -114,7 +114,7 @@ fn a_projector_lights_a_plane_facing_it_with_pi_scale_e_inside_its_frustum() {
             projection: Projection::Pinhole,
         });
         let f = render(&data, &view, &settings(4, 1, 2));
-        let (w, tan) = (12.0, 30f32.to_radians().tan());
+        let (w, tan) = (12.0, libm::tanf(30f32.to_radians()));
         for (i, px) in f.rgb.iter().enumerate() {
             // Pixel centre on the floor (the camera looks down −z with +y up).
             let (cx, cy) = ((i % 12) as f32 + 0.5, (i / 12) as f32 + 0.5);
@@ -205,7 +205,7 @@ fn checkered_light(c0: Rgb, c1: Rgb) -> Scene {
 fn square_irradiance(s: f64, h: f64) -> f64 {
     let a = s / (2.0 * h);
     let q = (1.0 + a * a).sqrt();
-    4.0 * (2.0 * a / q * (a / q).atan()) / 2.0
+    4.0 * (2.0 * a / q * libm::atan(a / q)) / 2.0
 }
 
 #[test]

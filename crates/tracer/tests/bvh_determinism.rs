@@ -15,7 +15,7 @@ fn grid(k: usize) -> Vec<InputTri> {
         let y = if x < 0.3 {
             0.0
         } else {
-            0.1 * (9.0 * x).sin() * (7.0 * z).cos()
+            0.1 * libm::sinf(9.0 * x) * libm::cosf(7.0 * z)
         };
         Vec3A::new(x, y, z)
     };

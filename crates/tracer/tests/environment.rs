@@ -54,7 +54,11 @@ fn equal_area(a: usize, b: usize, na: usize, nb: usize, s: f64, t: f64) -> Vec3A
     let phi = 2.0 * PI * (a as f64 + s) / na as f64;
     let z = 1.0 - 2.0 * (b as f64 + t) / nb as f64;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    Vec3A::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32)
+    Vec3A::new(
+        (r * libm::cos(phi)) as f32,
+        (r * libm::sin(phi)) as f32,
+        z as f32,
+    )
 }
 
 #[test]
@@ -91,7 +95,7 @@ fn envmap_pdf_integrates_to_one_and_matches_its_samples() {
             env.radiance(w).max_element() > 0.0,
             "a black direction was sampled"
         );
-        let phi = (w.y as f64).atan2(w.x as f64).rem_euclid(2.0 * PI);
+        let phi = libm::atan2(w.y as f64, w.x as f64).rem_euclid(2.0 * PI);
         let a = ((phi / (2.0 * PI) * na as f64) as usize).min(na - 1);
         let b = (((1.0 - w.z as f64) / 2.0 * nb as f64) as usize).min(nb - 1);
         counts[b * na + a] += 1;
@@ -244,7 +248,7 @@ fn cube_map_estimate(data: &SceneData, view: &View, n: u32, spp: u32, depth: i32
                 let b = 1.0 - 2.0 * (j as f64 + 0.5) / n as f64;
                 let d = DVec3::from(Vec3::from(f + r * a as f32 + u * b as f32));
                 let len2 = 1.0 + a * a + b * b;
-                let d_omega = (2.0 / n as f64).powi(2) / len2.powf(1.5);
+                let d_omega = (2.0 / n as f64).powi(2) / libm::pow(len2, 1.5);
                 let k = (1.0 + d.normalize().dot(axis)) / 4.0;
                 let l = Vec3::from_array(img.rgb[(j * n + i) as usize]).as_dvec3();
                 sum += l * k * d_omega;

@@ -160,7 +160,7 @@ fn cube_map(data: &SceneData, view: &View, n: u32, spp: u32) -> DVec3 {
                 let a = 2.0 * (i as f64 + 0.5) / n as f64 - 1.0;
                 let b = 1.0 - 2.0 * (j as f64 + 0.5) / n as f64;
                 let d = DVec3::from(Vec3::from(f + r * a as f32 + u * b as f32));
-                let d_omega = (2.0 / n as f64).powi(2) / (1.0 + a * a + b * b).powf(1.5);
+                let d_omega = (2.0 / n as f64).powi(2) / libm::pow(1.0 + a * a + b * b, 1.5);
                 let kern = (1.0 + d.normalize().dot(axis)) / 4.0;
                 let l = Vec3::from_array(img.rgb[(j * n + i) as usize]).as_dvec3();
                 sum += l * kern * d_omega;

@@ -128,8 +128,11 @@ fn grid(n: usize) -> eyeadapt_scene::Mesh {
     for j in 0..=k {
         for i in 0..=k {
             let (x, z) = (i as f32 / k as f32, j as f32 / k as f32);
-            m.positions
-                .push(Vec3::new(x, 0.05 * (9.0 * x).sin() * (7.0 * z).cos(), z));
+            m.positions.push(Vec3::new(
+                x,
+                0.05 * libm::sinf(9.0 * x) * libm::cosf(7.0 * z),
+                z,
+            ));
         }
     }
     for j in 0..k {

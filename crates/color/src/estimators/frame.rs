@@ -92,7 +92,7 @@ impl<'a> FrameAovs<'a> {
     /// with square pixels and vertical field of view `fov_y_deg`.
     pub(crate) fn cos_axis_angle(&self, i: usize) -> f64 {
         let (x, y) = (i % self.width, i / self.width);
-        let tan_half = (self.fov_y_deg.to_radians() / 2.0).tan();
+        let tan_half = libm::tan(self.fov_y_deg.to_radians() / 2.0);
         let aspect = self.width as f64 / self.height as f64;
         let px = (2.0 * (x as f64 + 0.5) / self.width as f64 - 1.0) * aspect * tan_half;
         let py = (1.0 - 2.0 * (y as f64 + 0.5) / self.height as f64) * tan_half;

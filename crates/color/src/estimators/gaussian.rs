@@ -19,7 +19,7 @@ pub(crate) fn gaussian_kernel(sigma: f64, order: u8) -> Vec<f64> {
     let s2 = sigma * sigma;
     let g: Vec<f64> = xs
         .iter()
-        .map(|x| (-x * x / (2.0 * s2)).exp() / ((2.0 * std::f64::consts::PI).sqrt() * sigma))
+        .map(|x| libm::exp(-x * x / (2.0 * s2)) / ((2.0 * std::f64::consts::PI).sqrt() * sigma))
         .collect();
     match order {
         0 => {
@@ -109,7 +109,10 @@ pub(crate) fn derivative_magnitude(
         0 => d(0, 0).into_iter().map(f64::abs).collect(),
         1 => {
             let (fx, fy) = (d(1, 0), d(0, 1));
-            fx.iter().zip(&fy).map(|(a, b)| a.hypot(*b)).collect()
+            fx.iter()
+                .zip(&fy)
+                .map(|(a, b)| libm::hypot(*a, *b))
+                .collect()
         }
         2 => {
             let (fxx, fyy, fxy) = (d(2, 0), d(0, 2), d(1, 1));

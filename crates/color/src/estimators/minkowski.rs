@@ -103,7 +103,7 @@ pub(crate) fn minkowski_mean(values: &[f64], mask: &[bool], p: f64) -> f64 {
         sum += match int_p {
             Some(1) => t,
             Some(k) => t.powi(k),
-            None => t.powf(p),
+            None => libm::pow(t, p),
         };
         n += 1;
     }
@@ -111,7 +111,7 @@ pub(crate) fn minkowski_mean(values: &[f64], mask: &[bool], p: f64) -> f64 {
     if int_p == Some(1) {
         max * mean
     } else {
-        max * mean.powf(1.0 / p)
+        max * libm::pow(mean, 1.0 / p)
     }
 }
 

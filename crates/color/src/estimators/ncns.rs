@@ -107,10 +107,10 @@ impl NcnsOptions {
     fn angular_weight(&self, cos_theta: f64) -> f64 {
         let g = match self.axis_weight {
             AxisWeight::Gaussian => {
-                let theta = cos_theta.clamp(-1.0, 1.0).acos().to_degrees();
-                (-theta * theta / (2.0 * self.sigma_a_deg * self.sigma_a_deg)).exp()
+                let theta = libm::acos(cos_theta.clamp(-1.0, 1.0)).to_degrees();
+                libm::exp(-theta * theta / (2.0 * self.sigma_a_deg * self.sigma_a_deg))
             }
-            AxisWeight::CosPower => cos_theta.max(0.0).powf(self.cos_k),
+            AxisWeight::CosPower => libm::pow(cos_theta.max(0.0), self.cos_k),
         };
         if self.solid_angle_weight {
             g * cos_theta.powi(3)
@@ -189,8 +189,8 @@ mod tests {
         let o = NcnsOptions::default();
         assert_eq!(o.angular_weight(1.0), 1.0);
         // At θ = σ_a the Gaussian is e^{-1/2}; cos³ multiplies.
-        let c = 15f64.to_radians().cos();
-        let want = (-0.5f64).exp() * c.powi(3);
+        let c = libm::cos(15f64.to_radians());
+        let want = libm::exp(-0.5f64) * c.powi(3);
         assert!((o.angular_weight(c) - want).abs() < 1e-12);
         let p = NcnsOptions {
             axis_weight: AxisWeight::CosPower,

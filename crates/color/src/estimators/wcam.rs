@@ -117,7 +117,7 @@ impl WcamOptions {
     fn pixel_weight(&self, s: f64) -> f64 {
         match self.weight {
             WcamWeight::Linear => 1.0 + self.w * s,
-            WcamWeight::Power => s.powf(self.w),
+            WcamWeight::Power => libm::pow(s, self.w),
         }
     }
 }

@@ -39,7 +39,7 @@ pub(super) fn case5(runs: &[JobRun]) -> (&'static str, Out) {
                 format!(
                     "frame {} = {n}, yaw {:.0}° from +x",
                     s.frame,
-                    fwd.z.atan2(fwd.x).to_degrees()
+                    libm::atan2f(fwd.z, fwd.x).to_degrees()
                 )
             })
             .collect::<Vec<_>>()

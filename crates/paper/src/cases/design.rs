@@ -244,7 +244,7 @@ fn brightest_on_bench(
 fn gap(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> f64 {
     let dx = (a.0.x - b.1.x).max(b.0.x - a.1.x).max(0.0);
     let dz = (a.0.z - b.1.z).max(b.0.z - a.1.z).max(0.0);
-    dx.hypot(dz)
+    libm::hypot(dx, dz)
 }
 
 /// Case 6: along the spline path's frames 5 and 10, the orange light's mirror image lies off

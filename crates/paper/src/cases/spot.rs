@@ -62,17 +62,20 @@ impl Spot {
 /// carries the same solid angle), each weighted by the spot's profile. No noise: geometry.
 pub(super) fn power_share(data: &SceneData, spot: &Spot, material: u32) -> f64 {
     const N: usize = 128;
-    let cos_cone = spot.cone_deg.to_radians().cos();
+    let cos_cone = libm::cosf(spot.cone_deg.to_radians());
     let (a, b) = spot.across();
     let mut scratch = data.geometry.scratch();
     let (mut on, mut all) = (0.0f64, 0.0f64);
     for i in 0..N {
         let c = 1.0 - (1.0 - cos_cone) * (i as f32 + 0.5) / N as f32;
-        let (s, theta) = ((1.0 - c * c).max(0.0).sqrt(), c.clamp(-1.0, 1.0).acos());
+        let (s, theta) = (
+            (1.0 - c * c).max(0.0).sqrt(),
+            libm::acosf(c.clamp(-1.0, 1.0)),
+        );
         let w = spot.profile(theta) as f64;
         for j in 0..N {
             let phi = std::f32::consts::TAU * (j as f32 + 0.5) / N as f32;
-            let d = (spot.axis * c + (a * phi.cos() + b * phi.sin()) * s).normalize();
+            let d = (spot.axis * c + (a * libm::cosf(phi) + b * libm::sinf(phi)) * s).normalize();
             let (o, d) = (Vec3A::from(spot.position), Vec3A::from(d));
             all += w;
             let hit = data
@@ -120,7 +123,7 @@ pub(super) fn lights(data: &SceneData, scratch: &mut RayScratch, spot: &Spot, p:
     let to = p - spot.position;
     let dist = to.length();
     let dir = to / dist;
-    if dir.dot(spot.axis) < spot.cone_deg.to_radians().cos() {
+    if dir.dot(spot.axis) < libm::cosf(spot.cone_deg.to_radians()) {
         return false;
     }
     let o = Vec3A::from(spot.position);

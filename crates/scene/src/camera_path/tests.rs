@@ -71,8 +71,12 @@ fn passes_through_every_keyframe_exactly() {
             Orientation::LookAt { look_at, up } => look_at_basis(k.position, look_at, up).unwrap(),
             Orientation::YawPitch { yaw_deg, pitch_deg } => {
                 let (y, p) = (yaw_deg.to_radians(), pitch_deg.to_radians());
-                let forward = DVec3::new(-y.sin() * p.cos(), p.sin(), -y.cos() * p.cos());
-                let right = DVec3::new(y.cos(), 0.0, -y.sin());
+                let forward = DVec3::new(
+                    -libm::sin(y) * libm::cos(p),
+                    libm::sin(p),
+                    -libm::cos(y) * libm::cos(p),
+                );
+                let right = DVec3::new(libm::cos(y), 0.0, -libm::sin(y));
                 DMat3::from_cols(right, right.cross(forward), -forward)
             }
         };
@@ -374,7 +378,7 @@ fn slerp_takes_the_short_way() {
     let half = (-5.0f64).to_radians();
     assert_close(
         path.sample(0.5).forward,
-        DVec3::new(-half.sin(), 0.0, -half.cos()),
+        DVec3::new(-libm::sin(half), 0.0, -libm::cos(half)),
         1e-12,
         "mid",
     );
@@ -395,7 +399,7 @@ fn orientation_is_slerp_in_time() {
         let pose = path.sample(1.0 + 2.0 * s);
         assert_close(
             pose.forward,
-            DVec3::new(-a.sin(), 0.0, -a.cos()),
+            DVec3::new(-libm::sin(a), 0.0, -libm::cos(a)),
             1e-12,
             "constant angular speed",
         );

@@ -336,7 +336,7 @@ fn to_uv(t: Option<&gltf::texture::TextureTransform>) -> Affine2 {
     let Some(t) = t else {
         return Affine2::IDENTITY;
     };
-    let (s, c) = t.rotation().sin_cos();
+    let (s, c) = libm::sincosf(t.rotation());
     let rotation = Mat2::from_cols(Vec2::new(c, s), Vec2::new(-s, c));
     let scale = Mat2::from_diagonal(Vec2::from_array(t.scale()));
     Affine2::from_mat2_translation(rotation * scale, Vec2::from_array(t.offset()))

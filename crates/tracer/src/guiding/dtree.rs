@@ -7,6 +7,7 @@
 //!
 //! Quadrant `q` of a node covers x ∈ [q & 1, (q & 1) + 1) / 2, y ∈ [q >> 1, (q >> 1) + 1) / 2
 //! of the node's square. Nodes are stored parent before child, the root first.
+use crate::trig::sincos_turns;
 use glam::Vec3A;
 use std::f32::consts::PI;
 
@@ -42,7 +43,7 @@ impl Default for DTree {
 #[inline]
 pub fn to_square(d: Vec3A) -> [f32; 2] {
     let x = ((d.z.clamp(-1.0, 1.0) + 1.0) * 0.5).min(1.0 - f32::EPSILON * 0.5);
-    let mut phi = d.y.atan2(d.x) * (0.5 / PI);
+    let mut phi = libm::atan2f(d.y, d.x) * (0.5 / PI);
     if phi < 0.0 {
         phi += 1.0;
     }
@@ -54,7 +55,7 @@ pub fn to_square(d: Vec3A) -> [f32; 2] {
 pub fn from_square(p: [f32; 2]) -> Vec3A {
     let cos_t = 2.0 * p[0] - 1.0;
     let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
-    let (s, c) = (2.0 * PI * p[1]).sin_cos();
+    let (s, c) = sincos_turns(p[1]);
     Vec3A::new(sin_t * c, sin_t * s, cos_t)
 }
 

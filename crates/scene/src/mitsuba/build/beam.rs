@@ -102,7 +102,7 @@ impl<'t> Builder<'t> {
         let (Some(frame), Some(vertical)) = (self.beam_frame(o, m), vertical) else {
             return;
         };
-        let tan_half_fov_x = (vertical.to_radians() / 2.0).tan() * aspect;
+        let tan_half_fov_x = libm::tan(vertical.to_radians() / 2.0) * aspect;
         self.scene.lights.push(Light::Projector {
             position: m.transform_point3(DVec3::ZERO).as_vec3(),
             frame: frame.as_mat3(),

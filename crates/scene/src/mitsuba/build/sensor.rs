@@ -235,7 +235,7 @@ impl<'t> Builder<'t> {
                 };
                 let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
                 mm.and_then(|f| {
-                    let fov = 2.0 * (diagonal / (2.0 * f)).atan().to_degrees();
+                    let fov = 2.0 * libm::atan(diagonal / (2.0 * f)).to_degrees();
                     vertical_fov(fov, "diagonal", aspect)
                 })
             }
@@ -389,7 +389,7 @@ impl<'t> Builder<'t> {
 /// eyeadapt's vertical field of view (degrees) for Mitsuba's `fov` along `axis` on a film of
 /// `aspect` = width / height; `None` for an unknown axis.
 pub fn vertical_fov(fov_deg: f64, axis: &str, aspect: f64) -> Option<f64> {
-    let t = (fov_deg.to_radians() / 2.0).tan();
+    let t = libm::tan(fov_deg.to_radians() / 2.0);
     let tv = match axis {
         "x" => t / aspect,
         "y" => t,
@@ -400,5 +400,5 @@ pub fn vertical_fov(fov_deg: f64, axis: &str, aspect: f64) -> Option<f64> {
         "larger" => t,
         _ => return None,
     };
-    Some(2.0 * tv.atan().to_degrees())
+    Some(2.0 * libm::atan(tv).to_degrees())
 }

@@ -359,7 +359,7 @@ fn smooth_normals(mesh: &Mesh) -> Vec<Vec3> {
         for k in 0..3 {
             let a = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
             let b = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
-            let angle = a.dot(b).clamp(-1.0, 1.0).acos();
+            let angle = libm::acos(a.dot(b).clamp(-1.0, 1.0));
             acc[t[k] as usize] += n * angle;
         }
     }
