@@ -2,6 +2,8 @@
 //! at run time on CPUs that have them, and a farm mixes old and new nodes. A run with those
 //! variants switched off (`GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA`, what an x86-64 node
 //! without them would pick) must write the same frames and the same adaptation colours.
+//! eyeadapt's own code calls none of them (`clippy.toml`); this guards against a dependency that
+//! would. Other glibc *versions* are `scripts/glibc-determinism.sh`'s check.
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -144,7 +144,7 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     let fwd = (Vec3A::ZERO - eye).normalize();
     let right = fwd.cross(Vec3A::Y).normalize();
     let up = right.cross(fwd);
-    let half = libm::tanf((15.0f32).to_radians()); // a 30° field of view: the mesh fills most of it
+    let half = libm::tanf(15.0f32.to_radians()); // a 30° field of view: the mesh fills most of it
     let primary = ray_set(|i| {
         let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
         let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;
