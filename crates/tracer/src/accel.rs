@@ -219,10 +219,10 @@ impl Accel {
         let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
         let sel = ChildSelect::new(ray.direction);
         if planes.is_empty() {
-            let hits = |i: usize, r: &Ray, _| node_hits_words(&bvh.nodes[i], &words[i], &sel, r);
+            let hits = |i: usize, r: &Ray, _| node_hits_words(&bvh.nodes[i], &words[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         } else {
-            let hits = |i: usize, r: &Ray, _| node_hits_float(&bvh.nodes[i], &planes[i], &sel, r);
+            let hits = |i: usize, r: &Ray, _| node_hits_float(&bvh.nodes[i], &planes[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         }
     }
