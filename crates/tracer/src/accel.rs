@@ -53,7 +53,7 @@ pub struct Accel {
     pub bounds_max: Vec3A,
 }
 
-/// Most nodes whose planes [`Accel`] keeps as floats (224 bytes a node, 1.75 MiB at most, so
+/// Most nodes whose planes [`Accel`] keeps as floats (256 bytes a node, 2 MiB at most, so
 /// they stay in cache next to the nodes): an interior of a few thousand triangles has a few
 /// hundred nodes; a million-triangle mesh keeps the bytes alone.
 pub const FLOAT_PLANES_MAX_NODES: usize = 1 << 13;
@@ -222,7 +222,7 @@ impl Accel {
             let hits = |i: usize, r: &Ray, _| node_hits_words(&bvh.nodes[i], &words[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         } else {
-            let hits = |i: usize, r: &Ray, _| node_hits_float(&bvh.nodes[i], &planes[i], sel, r);
+            let hits = |i: usize, r: &Ray, _| node_hits_float(&planes[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         }
     }

@@ -24,7 +24,7 @@ const NODE_EPSILON: f32 = 0.0001;
 
 /// A node's 48 quantised child planes as floats, converted once at build time: what
 /// [`node_hits`] widens and converts on every test (a fifth of its instructions), and the
-/// node's [`ChildWords`] beside them. 224 bytes a node, so [`crate::accel`] keeps them only
+/// node's [`ChildWords`], extent and origin beside them. 256 bytes a node, so [`crate::accel`] keeps them only
 /// for small structures.
 #[derive(Clone, Copy, Debug, Default)]
 #[repr(C, align(16))]
@@ -32,6 +32,9 @@ pub struct FloatPlanes {
     /// min x, max x, min y, max y, min z, max z of the 8 children, in node order.
     q: [[f32; 8]; 6],
     words: ChildWords,
+    /// The node's quantisation step per axis (`compute_extent`) and its origin `p`.
+    extent: Vec3A,
+    origin: Vec3A,
 }
 
 impl FloatPlanes {
@@ -39,6 +42,8 @@ impl FloatPlanes {
         FloatPlanes {
             q: plane_fields(node).map(|bytes| bytes.map(|b| b as f32)),
             words: ChildWords::of(node),
+            extent: node.compute_extent(),
+            origin: Vec3A::from(node.p),
         }
     }
 }
@@ -130,30 +135,29 @@ fn plane_fields(node: &CwBvhNode) -> [&[u8; 8]; 6] {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
-    mask_by_meta(node, oct_inv4, entered(node, ray, byte_planes(node)))
+    mask_by_meta(
+        node,
+        oct_inv4,
+        entered(box_of(node), ray, byte_planes(node)),
+    )
 }
 
 /// [`node_hits`] with the mask made from the node's [`ChildWords`]: the same mask, bit for bit.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub fn node_hits_words(node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
-    mask_by_words(words, sel, entered(node, ray, byte_planes(node)))
+    mask_by_words(words, sel, entered(box_of(node), ray, byte_planes(node)))
 }
 
-/// [`node_hits_words`] with the node's planes (and words) given as floats: the same mask, bit
-/// for bit (a byte converts to a float exactly).
+/// [`node_hits_words`] with the node's planes (and words, extent and origin) given as floats:
+/// the same mask, bit for bit (a byte converts to a float exactly).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-pub fn node_hits_float(
-    node: &CwBvhNode,
-    planes: &FloatPlanes,
-    sel: &ChildSelect,
-    ray: &Ray,
-) -> u32 {
+pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
     use std::arch::x86_64::*;
     // SAFETY: SSE2 is part of the x86_64 baseline; `FloatPlanes` is 16-byte aligned and each
     // row is 8 floats, so both aligned loads are in bounds.
-    let lanes = entered(node, ray, |f| unsafe {
+    let lanes = entered((planes.extent, planes.origin), ray, |f| unsafe {
         let row = planes.q[f].as_ptr();
         (_mm_load_ps(row), _mm_load_ps(row.add(4)))
     });
@@ -181,19 +185,26 @@ fn byte_planes(
     }
 }
 
+/// The node's quantisation step per axis and its origin, decoded.
+#[inline(always)]
+fn box_of(node: &CwBvhNode) -> (Vec3A, Vec3A) {
+    (node.compute_extent(), Vec3A::from(node.p))
+}
+
 /// The node test: for children 0-3 and 4-7, all ones in the lanes of the children `ray`
-/// enters within (ε, tmax), with `planes(f)` giving field `f` (min x, max x, min y, max y,
-/// min z, max z) of children 0-3 and 4-7 as floats.
+/// enters within (ε, tmax), with `extent` and `origin` the node's ([`box_of`]) and
+/// `planes(f)` giving field `f` (min x, max x, min y, max y, min z, max z) of children 0-3 and
+/// 4-7 as floats.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn entered(
-    node: &CwBvhNode,
+    (extent, origin): (Vec3A, Vec3A),
     ray: &Ray,
     planes: impl Fn(usize) -> (std::arch::x86_64::__m128, std::arch::x86_64::__m128),
 ) -> [std::arch::x86_64::__m128; 2] {
     use std::arch::x86_64::*;
-    let adj_dir = node.compute_extent() * ray.inv_direction;
-    let adj_org = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
+    let adj_dir = extent * ray.inv_direction;
+    let adj_org = (origin - ray.origin) * ray.inv_direction;
     // SAFETY: SSE2 is part of the x86_64 baseline.
     unsafe {
         // For one axis: entry and exit distances of both halves. With a finite ray (obvhs
@@ -282,8 +293,24 @@ pub fn node_hits_words(node: &CwBvhNode, _: &ChildWords, sel: &ChildSelect, ray:
 
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-pub fn node_hits_float(node: &CwBvhNode, _: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-    node.intersect_ray(ray, sel.oct_inv4)
+pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
+    // The SSE2 test's arithmetic, one child at a time.
+    let d = (planes.extent * ray.inv_direction).to_array();
+    let o = ((planes.origin - ray.origin) * ray.inv_direction).to_array();
+    let mut mask = 0;
+    for c in 0..8 {
+        let (mut near, mut far) = (NODE_EPSILON, ray.tmax);
+        for a in 0..3 {
+            let t0 = planes.q[2 * a][c] * d[a] + o[a];
+            let t1 = planes.q[2 * a + 1][c] * d[a] + o[a];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        if near <= far {
+            mask |= planes.words.w[c] & sel.w[c];
+        }
+    }
+    mask
 }
 
 /// The number of set bits of each byte: the x86-64 baseline has no POPCNT, so `count_ones`
@@ -510,7 +537,7 @@ mod tests {
                 differ += (a != b) as u32;
                 let sel = ChildSelect::new(ray.direction);
                 assert_eq!(sel.oct_inv4, oct);
-                let float = node_hits_float(node, &FloatPlanes::of(node), sel, &ray);
+                let float = node_hits_float(&FloatPlanes::of(node), sel, &ray);
                 differ += (float != a) as u32;
                 differ += (node_hits_words(node, &ChildWords::of(node), sel, &ray) != a) as u32;
                 hits += (a != 0) as u32;
