@@ -186,6 +186,7 @@ fn byte_planes(
 }
 
 /// The node's quantisation step per axis and its origin, decoded.
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn box_of(node: &CwBvhNode) -> (Vec3A, Vec3A) {
     (node.compute_extent(), Vec3A::from(node.p))
