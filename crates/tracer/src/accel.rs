@@ -6,7 +6,9 @@
 //! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
-use crate::traverse::{FloatPlanes, node_hits_float, walk, walk_with};
+use crate::traverse::{
+    ChildSelect, ChildWords, FloatPlanes, node_hits_float, node_hits_words, walk_with,
+};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
@@ -42,6 +44,8 @@ pub struct Accel {
     /// Each node's child planes as floats when there are at most [`FLOAT_PLANES_MAX_NODES`]
     /// nodes (empty otherwise): the node test then skips converting the bytes.
     planes: Vec<FloatPlanes>,
+    /// Each node's [`ChildWords`] when `planes` is empty (the planes hold them otherwise).
+    words: Vec<ChildWords>,
     triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
     pub degenerate: usize,
@@ -49,7 +53,7 @@ pub struct Accel {
     pub bounds_max: Vec3A,
 }
 
-/// Most nodes whose planes [`Accel`] keeps as floats (192 bytes a node, 1.5 MiB at most, so
+/// Most nodes whose planes [`Accel`] keeps as floats (256 bytes a node, 2 MiB at most, so
 /// they stay in cache next to the nodes): an interior of a few thousand triangles has a few
 /// hundred nodes; a million-triangle mesh keeps the bytes alone.
 pub const FLOAT_PLANES_MAX_NODES: usize = 1 << 13;
@@ -159,16 +163,17 @@ impl Accel {
             })
             .collect();
         let triangles = kept.len();
-        let planes = if bvh.nodes.len() <= FLOAT_PLANES_MAX_NODES {
-            bvh.nodes.iter().map(FloatPlanes::of).collect()
+        let (planes, words) = if bvh.nodes.len() <= FLOAT_PLANES_MAX_NODES {
+            (bvh.nodes.iter().map(FloatPlanes::of).collect(), Vec::new())
         } else {
-            Vec::new()
+            (Vec::new(), bvh.nodes.iter().map(ChildWords::of).collect())
         };
         Accel {
             bvh,
             packs,
             info,
             planes,
+            words,
             triangles,
             degenerate,
             bounds_min: lo,
@@ -211,13 +216,26 @@ impl Accel {
         state: &mut Traversal,
         leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
     ) {
-        let (bvh, planes) = (&self.bvh, &self.planes);
+        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
+        let sel = ChildSelect::new(ray.direction);
         if planes.is_empty() {
-            walk(bvh, &mut { *ray }, state, leaves);
+            let hits = |i: usize, r: &Ray, _| node_hits_words(&bvh.nodes[i], &words[i], sel, r);
+            walk_with(bvh, &mut { *ray }, state, hits, leaves);
         } else {
-            let hits = |i: usize, r: &Ray, oct| node_hits_float(&bvh.nodes[i], &planes[i], r, oct);
+            let hits = |i: usize, r: &Ray, _| node_hits_float(&planes[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         }
+    }
+
+    /// The same structure with its planes kept as bytes (what a large one does), so that tests
+    /// can compare the two node tests on one BVH.
+    #[cfg(test)]
+    pub fn with_byte_planes(mut self) -> Accel {
+        if !self.planes.is_empty() {
+            self.planes = Vec::new();
+            self.words = self.bvh.nodes.iter().map(ChildWords::of).collect();
+        }
+        self
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
@@ -276,6 +294,7 @@ impl Accel {
             + self.packs.len() * std::mem::size_of::<Tri4>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
             + self.planes.len() * std::mem::size_of::<FloatPlanes>()
+            + self.words.len() * std::mem::size_of::<ChildWords>()
     }
 }
 

@@ -23,20 +23,97 @@ use obvhs::ray::{Ray, RayHit};
 const NODE_EPSILON: f32 = 0.0001;
 
 /// A node's 48 quantised child planes as floats, converted once at build time: what
-/// [`node_hits`] widens and converts on every test (a fifth of its instructions). 192 bytes a
-/// node, so [`crate::accel`] keeps them only for small structures.
+/// [`node_hits`] widens and converts on every test (a fifth of its instructions), and the
+/// node's [`ChildWords`], extent and origin beside them. 256 bytes a node, so [`crate::accel`] keeps them only
+/// for small structures.
 #[derive(Clone, Copy, Debug, Default)]
 #[repr(C, align(16))]
 pub struct FloatPlanes {
     /// min x, max x, min y, max y, min z, max z of the 8 children, in node order.
     q: [[f32; 8]; 6],
+    words: ChildWords,
+    /// The node's quantisation step per axis (`compute_extent`) and its origin `p`.
+    extent: Vec3A,
+    origin: Vec3A,
 }
 
 impl FloatPlanes {
     pub fn of(node: &CwBvhNode) -> FloatPlanes {
         FloatPlanes {
             q: plane_fields(node).map(|bytes| bytes.map(|b| b as f32)),
+            words: ChildWords::of(node),
+            extent: node.compute_extent(),
+            origin: Vec3A::from(node.p),
         }
+    }
+}
+
+/// What each child of a node adds to the node's hit mask when the ray enters it, made once at
+/// build time, so that the mask is the OR of the entered children's words (SSE2, no loop)
+/// instead of obvhs's per-child shifts of `get_child_and_index_bits`. A leaf child's word is
+/// its slot bits (`count` ones from its offset, below bit 24); an inner child's is the whole
+/// top byte, which [`ChildSelect`] narrows to the child's bit for the ray's octant; an empty
+/// child's is 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C, align(16))]
+pub struct ChildWords {
+    w: [u32; 8],
+}
+
+impl ChildWords {
+    pub fn of(node: &CwBvhNode) -> ChildWords {
+        ChildWords {
+            w: node.child_meta.map(|meta| {
+                // obvhs's test: inner children's meta is 24 + slot (0b11xxx), a leaf's offset
+                // is below 24, so bits 3 and 4 are both set only for inner children.
+                if meta & (meta << 1) & 0x10 != 0 {
+                    0xff00_0000
+                } else {
+                    ((meta as u32 >> 5) & 7) << (meta & 31)
+                }
+            }),
+        }
+    }
+}
+
+/// Per ray: the word that keeps, of an inner child `c`'s top byte, only bit `24 + (c ^ o)`
+/// (`o` the ray's inverted octant: obvhs's traversal priority) and every leaf bit below 24.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct ChildSelect {
+    w: [u32; 8],
+    /// obvhs's `Traversal::oct_inv4` of the ray's direction.
+    pub oct_inv4: u32,
+}
+
+/// [`ChildSelect`] of each inverted octant (`oct_inv4 & 7`), made at compile time: a ray
+/// looks its own up instead of building eight words (a fifth of what a matpreview ray's
+/// node tests had saved).
+static SELECT: [ChildSelect; 8] = {
+    let mut t = [ChildSelect {
+        w: [0; 8],
+        oct_inv4: 0,
+    }; 8];
+    let mut o = 0;
+    while o < 8 {
+        let mut c = 0;
+        while c < 8 {
+            t[o].w[c] = 0x00ff_ffff | 1 << (24 + (c as u32 ^ o as u32));
+            c += 1;
+        }
+        t[o].oct_inv4 = o as u32 * 0x0101_0101;
+        o += 1;
+    }
+    t
+};
+
+impl ChildSelect {
+    pub fn new(direction: Vec3A) -> &'static ChildSelect {
+        // obvhs's `ray_get_octant_inv4` (private there): 7 − octant in each byte.
+        let o = (if direction.x < 0.0 { 0 } else { 4 })
+            | (if direction.y < 0.0 { 0 } else { 2 })
+            | (if direction.z < 0.0 { 0 } else { 1 });
+        &SELECT[o]
     }
 }
 
@@ -58,11 +135,46 @@ fn plane_fields(node: &CwBvhNode) -> [&[u8; 8]; 6] {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
+    mask_by_meta(
+        node,
+        oct_inv4,
+        entered(box_of(node), ray, byte_planes(node)),
+    )
+}
+
+/// [`node_hits`] with the mask made from the node's [`ChildWords`]: the same mask, bit for bit.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub fn node_hits_words(node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
+    mask_by_words(words, sel, entered(box_of(node), ray, byte_planes(node)))
+}
+
+/// [`node_hits_words`] with the node's planes (and words, extent and origin) given as floats:
+/// the same mask, bit for bit (a byte converts to a float exactly).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; `FloatPlanes` is 16-byte aligned and each
+    // row is 8 floats, so both aligned loads are in bounds.
+    let lanes = entered((planes.extent, planes.origin), ray, |f| unsafe {
+        let row = planes.q[f].as_ptr();
+        (_mm_load_ps(row), _mm_load_ps(row.add(4)))
+    });
+    mask_by_words(&planes.words, sel, lanes)
+}
+
+/// Field `f` of the node's quantised planes (min x, max x, min y, max y, min z, max z) of
+/// children 0-3 and 4-7, widened and converted to floats.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn byte_planes(
+    node: &CwBvhNode,
+) -> impl Fn(usize) -> (std::arch::x86_64::__m128, std::arch::x86_64::__m128) {
     use std::arch::x86_64::*;
     let fields = plane_fields(node);
     // SAFETY: SSE2 is part of the x86_64 baseline; the loads read 8 bytes of [u8; 8] fields.
-    hits_of_planes(node, ray, oct_inv4, |f| unsafe {
-        // The 8 plane bytes of one field as two vectors of 4 floats (children 0-3 and 4-7).
+    move |f| unsafe {
         let v = _mm_loadl_epi64(fields[f].as_ptr() as *const __m128i);
         let zero = _mm_setzero_si128();
         let w = _mm_unpacklo_epi8(v, zero);
@@ -70,38 +182,32 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
             _mm_cvtepi32_ps(_mm_unpacklo_epi16(w, zero)),
             _mm_cvtepi32_ps(_mm_unpackhi_epi16(w, zero)),
         )
-    })
+    }
 }
 
-/// [`node_hits`] with the node's planes given as floats: the same mask, bit for bit (a byte
-/// converts to a float exactly).
+/// The node's quantisation step per axis and its origin, decoded.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-pub fn node_hits_float(node: &CwBvhNode, planes: &FloatPlanes, ray: &Ray, oct_inv4: u32) -> u32 {
-    use std::arch::x86_64::*;
-    // SAFETY: SSE2 is part of the x86_64 baseline; `FloatPlanes` is 16-byte aligned and each
-    // row is 8 floats, so both aligned loads are in bounds.
-    hits_of_planes(node, ray, oct_inv4, |f| unsafe {
-        let row = planes.q[f].as_ptr();
-        (_mm_load_ps(row), _mm_load_ps(row.add(4)))
-    })
+fn box_of(node: &CwBvhNode) -> (Vec3A, Vec3A) {
+    (node.compute_extent(), Vec3A::from(node.p))
 }
 
-/// The node test of [`node_hits`], with `planes(f)` giving field `f` (min x, max x, min y,
-/// max y, min z, max z) of children 0-3 and 4-7 as floats.
+/// The node test: for children 0-3 and 4-7, all ones in the lanes of the children `ray`
+/// enters within (ε, tmax), with `extent` and `origin` the node's ([`box_of`]) and
+/// `planes(f)` giving field `f` (min x, max x, min y, max y, min z, max z) of children 0-3 and
+/// 4-7 as floats.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn hits_of_planes(
-    node: &CwBvhNode,
+fn entered(
+    (extent, origin): (Vec3A, Vec3A),
     ray: &Ray,
-    oct_inv4: u32,
     planes: impl Fn(usize) -> (std::arch::x86_64::__m128, std::arch::x86_64::__m128),
-) -> u32 {
+) -> [std::arch::x86_64::__m128; 2] {
     use std::arch::x86_64::*;
-    let adj_dir = node.compute_extent() * ray.inv_direction;
-    let adj_org = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
+    let adj_dir = extent * ray.inv_direction;
+    let adj_org = (origin - ray.origin) * ray.inv_direction;
     // SAFETY: SSE2 is part of the x86_64 baseline.
-    let mask = unsafe {
+    unsafe {
         // For one axis: entry and exit distances of both halves. With a finite ray (obvhs
         // makes every 1/direction finite) t = q·d + o is monotonic in q under rounding, so
         // min/max picks exactly the plane a sign test would.
@@ -121,25 +227,57 @@ fn hits_of_planes(
         let (nz, fz) = axis(2, adj_dir.z, adj_org.z);
         let eps = _mm_set1_ps(NODE_EPSILON);
         let tmax = _mm_set1_ps(ray.tmax);
-        let mut mask = 0u32;
-        for h in 0..2 {
+        [0, 1].map(|h| {
             let near = _mm_max_ps(nx[h], _mm_max_ps(ny[h], nz[h]));
             let far = _mm_min_ps(fx[h], _mm_min_ps(fy[h], fz[h]));
             let near = _mm_max_ps(near, eps);
             let far = _mm_min_ps(far, tmax);
-            mask |= (_mm_movemask_ps(_mm_cmple_ps(near, far)) as u32) << (4 * h);
-        }
-        mask
-    };
+            _mm_cmple_ps(near, far)
+        })
+    }
+}
+
+/// The hit mask of the children entered (`lanes`, from [`entered`]), the way obvhs makes it:
+/// each entered child's bits from `get_child_and_index_bits`, one child at a time.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn mask_by_meta(node: &CwBvhNode, oct_inv4: u32, lanes: [std::arch::x86_64::__m128; 2]) -> u32 {
+    use std::arch::x86_64::_mm_movemask_ps;
+    // SAFETY: SSE2 is part of the x86_64 baseline.
+    let mut m = unsafe { _mm_movemask_ps(lanes[0]) | _mm_movemask_ps(lanes[1]) << 4 } as u32;
     let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let mut hit_mask = 0;
-    let mut m = mask;
     while m != 0 {
         let c = m.trailing_zeros() * 8;
         m &= m - 1;
         hit_mask |= (((child_bits8 >> c) as u32) & 0xff) << (((bit_index8 >> c) as u32) & 0xff);
     }
     hit_mask
+}
+
+/// The hit mask of the children entered (`lanes`, from [`entered`]) as the OR of their
+/// [`ChildWords`] narrowed by the ray's [`ChildSelect`]: no loop, no branch.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn mask_by_words(
+    words: &ChildWords,
+    sel: &ChildSelect,
+    lanes: [std::arch::x86_64::__m128; 2],
+) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; both structs are 16-byte aligned arrays of
+    // 8 u32, so the four aligned loads are in bounds.
+    unsafe {
+        let ld = |w: &[u32; 8], k: usize| _mm_load_si128(w.as_ptr().add(4 * k) as *const __m128i);
+        let half = |k: usize| {
+            let w = _mm_and_si128(ld(&words.w, k), ld(&sel.w, k));
+            _mm_and_si128(_mm_castps_si128(lanes[k]), w)
+        };
+        let a = _mm_or_si128(half(0), half(1));
+        let b = _mm_or_si128(a, _mm_shuffle_epi32::<0b01_00_11_10>(a));
+        let c = _mm_or_si128(b, _mm_shuffle_epi32::<0b10_11_00_01>(b));
+        _mm_cvtsi128_si32(c) as u32
+    }
 }
 
 #[cfg(not(target_arch = "x86_64"))]
@@ -150,9 +288,43 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
 
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-pub fn node_hits_float(node: &CwBvhNode, _: &FloatPlanes, ray: &Ray, oct_inv4: u32) -> u32 {
-    node.intersect_ray(ray, oct_inv4)
+pub fn node_hits_words(node: &CwBvhNode, _: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
+    node.intersect_ray(ray, sel.oct_inv4)
 }
+
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
+    // The SSE2 test's arithmetic, one child at a time.
+    let d = (planes.extent * ray.inv_direction).to_array();
+    let o = ((planes.origin - ray.origin) * ray.inv_direction).to_array();
+    let mut mask = 0;
+    for c in 0..8 {
+        let (mut near, mut far) = (NODE_EPSILON, ray.tmax);
+        for a in 0..3 {
+            let t0 = planes.q[2 * a][c] * d[a] + o[a];
+            let t1 = planes.q[2 * a + 1][c] * d[a] + o[a];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        if near <= far {
+            mask |= planes.words.w[c] & sel.w[c];
+        }
+    }
+    mask
+}
+
+/// The number of set bits of each byte: the x86-64 baseline has no POPCNT, so `count_ones`
+/// is a dozen instructions and a lookup is one.
+const ONES: [u8; 256] = {
+    let mut t = [0; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u32).count_ones() as u8;
+        i += 1;
+    }
+    t
+};
 
 /// Walks the nodes `ray` enters, in obvhs's order (its `traverse!` macro, step for step), and
 /// hands each entered node's hit leaf triangles to `leaves(base, mask, ray)`: slot `base + i`
@@ -203,13 +375,17 @@ pub fn walk_with(
         prims = UVec2::ZERO;
         if nodes.y & 0xff00_0000 != 0 {
             let hits_imask = nodes.y;
-            let child_bit = 31 - hits_imask.leading_zeros();
+            // `| 1` tells the compiler the value is not 0 (a bit of the top byte is set), so
+            // this is one `bsr` without the baseline's zero fix-up.
+            let child_bit = 31 - (hits_imask | 1).leading_zeros();
             nodes.y &= !(1u32 << child_bit);
             if nodes.y & 0xff00_0000 != 0 {
                 state.stack.push(nodes);
             }
             let slot_index = (child_bit - 24) ^ (oct_inv4 & 0xff);
-            let relative_index = (hits_imask & !(u32::MAX << slot_index)).count_ones();
+            // The inner children before this one: imask bits below its slot (a byte).
+            let relative_index = ONES[(hits_imask & !(u32::MAX << slot_index) & 0xff) as usize];
+            let relative_index = relative_index as u32;
             let index = (nodes.x + relative_index) as usize;
             let node = &bvh.nodes[index];
             let hit_mask = hits(index, ray, oct_inv4);
@@ -360,7 +536,11 @@ mod tests {
                 let a = node_hits(node, &ray, oct);
                 let b = node.intersect_ray(&ray, oct);
                 differ += (a != b) as u32;
-                differ += (node_hits_float(node, &FloatPlanes::of(node), &ray, oct) != a) as u32;
+                let sel = ChildSelect::new(ray.direction);
+                assert_eq!(sel.oct_inv4, oct);
+                let float = node_hits_float(&FloatPlanes::of(node), sel, &ray);
+                differ += (float != a) as u32;
+                differ += (node_hits_words(node, &ChildWords::of(node), sel, &ray) != a) as u32;
                 hits += (a != 0) as u32;
             }
         }
@@ -403,6 +583,45 @@ mod tests {
             let t = hit.map(|h| h.t).unwrap_or(f32::INFINITY);
             assert!((t - 5.32).abs() < 1e-4, "dx = {dx:?}: t = {t}");
         }
+    }
+
+    #[test]
+    fn ones_counts_the_bits_of_every_byte() {
+        for b in 0..256u32 {
+            assert_eq!(ONES[b as usize] as u32, b.count_ones(), "{b:#010b}");
+        }
+    }
+
+    #[test]
+    fn child_words_of_leaves_inner_and_empty_children() {
+        // Leaves of 2 slots at 0, 3 slots at 2 and 1 slot at 23; inner children in slots 3
+        // and 6 (meta 24 + slot); empty slots 5 and 7.
+        let node = CwBvhNode {
+            child_meta: [
+                0b0110_0000,
+                0b1110_0010,
+                0b0010_0000 | 23,
+                24 + 3,
+                0,
+                0,
+                24 + 6,
+                0,
+            ],
+            ..Default::default()
+        };
+        let w = ChildWords::of(&node).w;
+        assert_eq!(
+            w,
+            [0b11, 0b11100, 1 << 23, 0xff00_0000, 0, 0, 0xff00_0000, 0]
+        );
+        // A ray with all direction components negative has oct_inv4 0: inner child c keeps
+        // bit 24 + c; all positive: 7, so bit 24 + (c ^ 7).
+        let neg = ChildSelect::new(Vec3A::new(-1.0, -1.0, -1.0));
+        let pos = ChildSelect::new(Vec3A::new(1.0, 1.0, 1.0));
+        assert_eq!((neg.oct_inv4, pos.oct_inv4), (0, 0x0707_0707));
+        assert_eq!(w[3] & neg.w[3], 1 << 27);
+        assert_eq!(w[6] & pos.w[6], 1 << 25);
+        assert_eq!(w[2] & pos.w[2], 1 << 23);
     }
 
     fn obvhs_octant(bvh: &CwBvh, ray: &Ray) -> u32 {

@@ -453,8 +453,17 @@ mod tests {
 
     #[test]
     fn accel_matches_testing_every_triangle() {
+        accel_matches_brute_force(Accel::build(&terrain(24)));
+    }
+
+    #[test]
+    fn accel_with_byte_planes_matches_testing_every_triangle() {
+        // The node test of structures above `FLOAT_PLANES_MAX_NODES` nodes.
+        accel_matches_brute_force(Accel::build(&terrain(24)).with_byte_planes());
+    }
+
+    fn accel_matches_brute_force(accel: Accel) {
         let input = terrain(24);
-        let accel = Accel::build(&input);
         assert_eq!(accel.triangle_count(), input.len());
         let scalar: Vec<Triangle> = input.iter().map(|t| t.triangle()).collect();
         let mut state = Traversal::default();
