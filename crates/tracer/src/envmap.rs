@@ -2,11 +2,14 @@
 //! constant or read from a latitude–longitude map (`eyeadapt_scene::EnvironmentMap`, Mitsuba's
 //! `envmap` mapping and bilinear lookup).
 //!
-//! A map is sampled in proportion to its luminance × sin θ: a piecewise-constant density
-//! ([`Distribution2D`]) over the cells between neighbouring texel centres, each weighted by the
-//! largest luminance of its four corners (so every direction whose bilinear radiance is not
-//! black has a positive density) times the solid angle of its band. A constant environment is
-//! sampled uniformly over the sphere.
+//! A map is sampled in proportion to its luminance × sin θ, as it is looked up: a cell between
+//! neighbouring texel centres is chosen ([`Distribution2D`]) by the mean luminance of its four
+//! corners times the solid angle of its band, and a point inside it in proportion to the
+//! bilinear interpolation of those luminances ([`crate::bilinear`]), so that radiance / density
+//! stays nearly constant across a bright texel such as a sun. Each corner's luminance is at
+//! least 10⁻⁶ of its largest component, so every direction whose radiance is not black has a
+//! positive density. A constant environment is sampled uniformly over the sphere.
+use crate::bilinear;
 use crate::distribution2d::Distribution2D;
 use crate::emitter::luminance;
 use crate::fmath::{cell_index, floor};
@@ -33,6 +36,15 @@ pub struct LatLong {
     /// its first texel at the end (a stride of w + 1), so the right neighbour of column
     /// i < w is always at i + 1 and a lookup needs no wrap of its second column.
     texels: Vec<Vec3A>,
+    /// The sampling luminance of each texel, in the same layout as `texels`.
+    lum: Vec<f32>,
+    /// The cells of `dist` in v (`(h − 1).max(1)`), and as f32.
+    nv: usize,
+    nv_f: f32,
+    /// Per row of cells, `dist`'s density over its unit square per unit of bilinear luminance:
+    /// a cell's weight is its corners' mean luminance × `band`, so the density at a point is
+    /// `bilerp(corners) × band × cells / total`, with no division per lookup.
+    row_scale: Vec<f32>,
     to_world: Mat3A,
     from_world: Mat3A,
     /// Over cells (i, j): texel centres i..i+1 along u (wrapping), rows j..j+1 along v.
@@ -134,14 +146,20 @@ impl LatLong {
             texels.push(texels[texels.len() - w]);
         }
         let stride = w + 1;
+        let lum: Vec<f32> = texels
+            .iter()
+            .map(|c| luminance(*c).max(1e-6 * c.max_element()).max(0.0))
+            .collect();
         let nv = (h - 1).max(1);
         let mut weights = Vec::with_capacity(w * nv);
+        let mut bands = Vec::with_capacity(nv);
         let mut sum = glam::DVec3::ZERO;
         for j in 0..nv {
             let (j0, j1) = (j.min(h - 1), (j + 1).min(h - 1));
             let c0 = libm::cosf(PI * j as f32 / nv as f32);
             let c1 = libm::cosf(PI * (j + 1) as f32 / nv as f32);
             let band = (c0 - c1).max(0.0);
+            bands.push(band);
             for i in 0..w {
                 let i1 = (i + 1) % w;
                 let corners = [
@@ -150,17 +168,25 @@ impl LatLong {
                     texels[j1 * stride + i],
                     texels[j1 * stride + i1],
                 ];
-                let peak = corners
-                    .iter()
-                    .map(|c| luminance(*c).max(1e-6 * c.max_element()))
-                    .fold(0.0f32, f32::max);
-                weights.push(peak * band);
+                let l = [
+                    j0 * stride + i,
+                    j0 * stride + i1,
+                    j1 * stride + i,
+                    j1 * stride + i1,
+                ];
+                weights.push(0.25 * l.iter().map(|&k| lum[k]).sum::<f32>() * band);
                 let avg = corners.iter().copied().sum::<Vec3A>() * 0.25;
                 sum +=
                     glam::Vec3::from(avg).as_dvec3() * (band as f64 * 2.0 * PI as f64 / w as f64);
             }
         }
         let dist = Distribution2D::new(&weights, w, nv)?;
+        let total: f64 = weights.iter().map(|&x| x as f64).sum();
+        let cells = (w * nv) as f64;
+        let row_scale = bands
+            .iter()
+            .map(|&b| (b as f64 * cells / total) as f32)
+            .collect();
         let to_world = Mat3A::from(m.to_world);
         Some(LatLong {
             w,
@@ -169,6 +195,10 @@ impl LatLong {
             h_last_f: (h - 1) as f32,
             half_texel: 0.5 / w as f32,
             texels,
+            lum,
+            nv,
+            nv_f: nv as f32,
+            row_scale,
             to_world,
             from_world: to_world.transpose(),
             dist,
@@ -230,17 +260,42 @@ impl LatLong {
         [x, v]
     }
 
+    /// The cell of `dist` that point `p` of its unit square lies in, `p`'s place inside it, and
+    /// the cell's corner luminances.
+    #[inline]
+    fn cell_at(&self, p: [f32; 2]) -> ([usize; 2], [f32; 2], bilinear::Corners) {
+        let (x, y) = (p[0] * self.w_f, p[1] * self.nv_f);
+        let (i, j) = (cell_index(x, self.w), cell_index(y, self.nv));
+        let f = [
+            (x - i as f32).clamp(0.0, 1.0),
+            (y - j as f32).clamp(0.0, 1.0),
+        ];
+        // Rows as `lookup` takes them; column i + 1 is the padding column after the last.
+        let stride = self.w + 1;
+        let (r0, r1) = (
+            j.min(self.h - 1) * stride + i,
+            (j + 1).min(self.h - 1) * stride + i,
+        );
+        let l = &self.lum;
+        ([i, j], f, [l[r0], l[r0 + 1], l[r1], l[r1 + 1]])
+    }
+
     #[inline]
     fn pdf_uv(&self, u: f32, v: f32, sin_t: f32) -> f32 {
         if sin_t <= 0.0 {
             return 0.0;
         }
-        self.dist.pdf(self.cell_coords(u, v)) / (2.0 * PI * PI * sin_t)
+        let ([_, j], f, corners) = self.cell_at(self.cell_coords(u, v));
+        bilinear::bilerp(f, &corners) * self.row_scale[j] / (2.0 * PI * PI * sin_t)
     }
 
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
         let (p, pdf) = self.dist.sample(u);
+        // The point's place in its cell is uniform: redraw it from the bilinear luminance.
+        let ([i, j], f, corners) = self.cell_at(p);
+        let q = bilinear::sample(f, &corners);
+        let p = [(i as f32 + q[0]) / self.w_f, (j as f32 + q[1]) / self.nv_f];
         let mut mu = p[0] + self.half_texel;
         if mu >= 1.0 {
             mu -= 1.0;
@@ -365,5 +420,38 @@ mod tests {
             }
         }
         assert!(positive > 3900, "{positive}");
+    }
+
+    /// The density with the rows' scale factors is the cell's density times the bilinear one
+    /// inside it, at any point of a map with a bright texel, dark texels and a black one.
+    #[test]
+    fn density_is_the_cells_times_the_bilinear_one() {
+        let (w, h) = (7u32, 5u32);
+        let texels = (0..w * h)
+            .map(|k| match k {
+                17 => Rgb::new(400.0, 380.0, 300.0),
+                9 => Rgb::new(0.0, 0.0, 0.0),
+                _ => Rgb::new(0.2 + 0.1 * (k % 5) as f32, 0.3, 0.05 * (k % 3) as f32),
+            })
+            .collect();
+        let map = test_map(w, h, texels, 1.0, glam::Mat3::IDENTITY);
+        let Some(Environment::Map(m)) = Environment::new(None, Some(&map)) else {
+            panic!("a map")
+        };
+        for k in 0..5000u32 {
+            let (u, v) = (
+                (k % 71) as f32 / 71.0 + 0.003,
+                (k / 71) as f32 / 71.0 + 0.004,
+            );
+            let sin_t = libm::sinf(PI * v);
+            let c = m.cell_coords(u, v);
+            let (_, f, corners) = m.cell_at(c);
+            let want = m.dist.pdf(c) * bilinear::pdf(f, &corners) / (2.0 * PI * PI * sin_t);
+            let got = m.pdf_uv(u, v, sin_t);
+            assert!(
+                (got - want).abs() <= 1e-4 * want.max(1e-3),
+                "({u}, {v}): {got} against {want}"
+            );
+        }
     }
 }

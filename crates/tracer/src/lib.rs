@@ -12,6 +12,7 @@
 
 mod accel;
 mod beam;
+mod bilinear;
 mod bsdf;
 mod bump;
 mod bvh_bench;

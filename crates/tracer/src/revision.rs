@@ -28,4 +28,6 @@
 /// 7: every transcendental function is the `libm` crate's or the tracer's own (`trig.rs`)
 ///    instead of the C library's, so that nodes with different glibc versions give the same
 ///    bits (every scene, in the last bits).
-pub const RENDER_REVISION: u32 = 7;
+/// 8: an environment map draws points inside a cell in proportion to the bilinear luminance
+///    (scenes with a map).
+pub const RENDER_REVISION: u32 = 8;
