@@ -61,7 +61,7 @@ pub use crate::material::{Bsdf, Distribution, Material, MaterialId, Param};
 pub use crate::mesh::{Mesh, MeshId};
 pub use crate::mitsuba::{load_mitsuba, load_mitsuba_str, mitsuba_vertical_fov};
 pub use crate::obj::{LoadedObj, load_obj_bytes};
-pub use crate::pixel_filter::PixelFilter;
+pub use crate::pixel_filter::{FilterWeights, PixelFilter};
 pub use crate::portal::Portal;
 pub use crate::principled::{Principled, PrincipledThin};
 pub use crate::scene::{CutoutShadows, RenderDefaults, Scene};

@@ -26,23 +26,19 @@ impl PixelFilter {
 
     /// The 1D weight at offset `x` (pixels) from the pixel centre.
     pub fn eval(&self, x: f32) -> f32 {
-        match *self {
-            PixelFilter::Box => {
-                if x.abs() <= 0.5 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-            PixelFilter::Tent { radius } => (1.0 - x.abs() / radius).max(0.0),
-            PixelFilter::Gaussian { stddev, radius } => {
-                let g = |t: f32| libm::expf(-t * t / (2.0 * stddev * stddev));
-                if x.abs() >= radius {
-                    0.0
-                } else {
-                    (g(x) - g(radius)).max(0.0)
-                }
-            }
+        self.weights().eval(x)
+    }
+
+    /// The filter with what its weights share worked out once (the Gaussian's value at its
+    /// radius): what a film keeps while it splats samples.
+    pub fn weights(&self) -> FilterWeights {
+        let floor = match *self {
+            PixelFilter::Gaussian { stddev, radius } => gaussian(stddev, radius),
+            _ => 0.0,
+        };
+        FilterWeights {
+            filter: *self,
+            floor,
         }
     }
 
@@ -54,6 +50,43 @@ impl PixelFilter {
         };
         (radius - 0.5).max(0.0).ceil() as usize
     }
+}
+
+/// A [`PixelFilter`] ready to weigh samples: [`PixelFilter::weights`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilterWeights {
+    filter: PixelFilter,
+    /// The Gaussian's `exp(−r²/2σ²)` (0 for the other filters).
+    floor: f32,
+}
+
+impl FilterWeights {
+    /// [`PixelFilter::eval`]: the 1D weight at offset `x` (pixels) from the pixel centre.
+    #[inline]
+    pub fn eval(&self, x: f32) -> f32 {
+        match self.filter {
+            PixelFilter::Box => {
+                if x.abs() <= 0.5 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            PixelFilter::Tent { radius } => (1.0 - x.abs() / radius).max(0.0),
+            PixelFilter::Gaussian { stddev, radius } => {
+                if x.abs() >= radius {
+                    0.0
+                } else {
+                    (gaussian(stddev, x) - self.floor).max(0.0)
+                }
+            }
+        }
+    }
+}
+
+/// `exp(−t²/2σ²)`.
+fn gaussian(stddev: f32, t: f32) -> f32 {
+    libm::expf(-t * t / (2.0 * stddev * stddev))
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@ use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace_guided};
 use crate::sampler::{SampleStream, StreamSeeds, hash_key};
 use crate::scene_data::SceneData;
 use crate::trig::sincos_turns;
-use eyeadapt_scene::{PixelFilter, Projection};
+use eyeadapt_scene::{FilterWeights, PixelFilter, Projection};
 use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use smallvec::SmallVec;
@@ -380,6 +380,7 @@ impl Pass<'_> {
             _ => false,
         };
         let splats = settings.filter != PixelFilter::Box;
+        let weights = settings.filter.weights();
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
         let seeds = StreamSeeds::new(key);
         // The aperture has its own stream, so pinhole renders keep their samples.
@@ -414,7 +415,7 @@ impl Pass<'_> {
             if splats {
                 splat_sample(
                     splat,
-                    settings.filter,
+                    &weights,
                     (view.width as usize, settings.filter.reach()),
                     (x as f32 + j[0], j[1]),
                     d3(p.l),
@@ -493,7 +494,7 @@ fn assemble(
 /// splat buffer (`band` rows of `w`, the sample's own row in the middle).
 fn splat_sample(
     splat: &mut [(DVec3, f64)],
-    filter: PixelFilter,
+    filter: &FilterWeights,
     (w, reach): (usize, usize),
     (x, dy): (f32, f32),
     l: DVec3,
@@ -555,7 +556,13 @@ mod tests {
         // Three pixels wide, reach 1; a sample at x = 1.25 in the middle of its row.
         let tent = PixelFilter::Tent { radius: 1.0 };
         let mut splat = vec![(DVec3::ZERO, 0.0); 3 * 3];
-        splat_sample(&mut splat, tent, (3, 1), (1.25, 0.5), DVec3::splat(2.0));
+        splat_sample(
+            &mut splat,
+            &tent.weights(),
+            (3, 1),
+            (1.25, 0.5),
+            DVec3::splat(2.0),
+        );
         // Rows above and below: |offset| = 1, weight 0. Own row: 1 − 0.75, 1 − 0.25, 0.
         let weights: Vec<f64> = splat.iter().map(|c| c.1).collect();
         assert_eq!(weights, [0.0, 0.0, 0.0, 0.25, 0.75, 0.0, 0.0, 0.0, 0.0]);
