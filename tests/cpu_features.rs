@@ -3,7 +3,9 @@
 //! variants switched off (`GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA`, what an x86-64 node
 //! without them would pick) must write the same frames and the same adaptation colours.
 //! eyeadapt's own code calls none of them (`clippy.toml`); this guards against a dependency that
-//! would. Other glibc *versions* are `scripts/glibc-determinism.sh`'s check.
+//! would. The baseline run also sets `EYEADAPT_SIMD=baseline`, so it traverses with the SSE2
+//! node tests where the other run uses the AVX2 ones (`crates/tracer/src/isa.rs`). Other glibc
+//! *versions* are `scripts/glibc-determinism.sh`'s check.
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -12,7 +14,10 @@ const NO_FMA: &str = "glibc.cpu.hwcaps=-AVX2_Usable,-FMA_Usable,-AVX2,-FMA";
 fn eyeadapt(no_fma: bool) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_eyeadapt"));
     if no_fma {
-        c.env("GLIBC_TUNABLES", NO_FMA);
+        c.env("GLIBC_TUNABLES", NO_FMA)
+            .env("EYEADAPT_SIMD", "baseline");
+    } else {
+        c.env_remove("EYEADAPT_SIMD");
     }
     c
 }
@@ -26,7 +31,9 @@ fn cpu_has_fma() -> bool {
     })
 }
 
-/// The dynamic loader's platform name, as the tunable leaves it.
+/// The dynamic loader's platform name and active hwcaps levels (x86-64-v2/v3/v4), as the
+/// tunable leaves them. Either shows the tunable working: on some CPUs (an AMD EPYC with
+/// AVX-512, say) the platform is plain "x86_64" either way and only the levels change.
 fn loader_platform(no_fma: bool) -> Option<String> {
     let mut c = Command::new("/lib64/ld-linux-x86-64.so.2");
     c.arg("--list-diagnostics");
@@ -34,9 +41,14 @@ fn loader_platform(no_fma: bool) -> Option<String> {
         c.env("GLIBC_TUNABLES", NO_FMA);
     }
     let out = c.output().ok()?;
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .find_map(|l| l.strip_prefix("dl_platform=").map(str::to_owned))
+    let text = String::from_utf8_lossy(&out.stdout);
+    let field = |key: &str| {
+        text.lines()
+            .find_map(|l| l.strip_prefix(key).map(str::to_owned))
+    };
+    let platform = field("dl_platform=")?;
+    let levels = field("dl_hwcaps_subdirs_active=").unwrap_or_default();
+    Some(format!("{platform} hwcaps {levels}"))
 }
 
 fn render(scene: &str, out: &Path, no_fma: bool) {
@@ -118,7 +130,7 @@ fn frames_and_adaptation_colours_do_not_depend_on_the_cpus_fma() {
     for ((name, a), (_, b)) in native.iter().zip(&baseline) {
         assert!(
             a == b,
-            "{name}: different bits with glibc's FMA variants switched off"
+            "{name}: different bits with glibc's FMA variants and eyeadapt's AVX2 node tests switched off"
         );
     }
 }

@@ -6,9 +6,8 @@
 //! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
-use crate::traverse::{
-    ChildSelect, ChildWords, FloatPlanes, node_hits_float, node_hits_words, walk_with,
-};
+use crate::isa::{Baseline, NodeTest};
+use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, walk_with};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
@@ -191,9 +190,20 @@ impl Accel {
     /// equally near hits in one node the highest slot wins, as in obvhs's one-by-one order.
     #[inline]
     pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
+        self.closest_with(Baseline, ray, state)
+    }
+
+    /// [`Accel::closest`] with the node test `test`.
+    #[inline(always)]
+    pub fn closest_with(
+        &self,
+        test: impl NodeTest,
+        ray: &Ray,
+        state: &mut Traversal,
+    ) -> Option<SlotHit> {
         let mut best = None;
         let shear = Shear::new(ray);
-        self.walk(ray, state, |base, mask, r| {
+        self.walk(test, ray, state, |base, mask, r| {
             for_blocks(base, mask, |block, lanes| {
                 if let Some((t, lane)) = self.packs[block as usize].closest(r, &shear, lanes) {
                     r.tmax = t;
@@ -208,10 +218,12 @@ impl Accel {
         best
     }
 
-    /// [`walk`] over this structure, with the float planes' node test when they are kept.
+    /// [`crate::traverse::walk`] over this structure with `test`'s float-plane form when the
+    /// planes are kept, its byte form otherwise.
     #[inline(always)]
     fn walk(
         &self,
+        test: impl NodeTest,
         ray: &Ray,
         state: &mut Traversal,
         leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
@@ -219,10 +231,10 @@ impl Accel {
         let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
         let sel = ChildSelect::new(ray.direction);
         if planes.is_empty() {
-            let hits = |i: usize, r: &Ray, _| node_hits_words(&bvh.nodes[i], &words[i], sel, r);
+            let hits = |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         } else {
-            let hits = |i: usize, r: &Ray, _| node_hits_float(&planes[i], sel, r);
+            let hits = |i: usize, r: &Ray, _| test.float(&planes[i], sel, r);
             walk_with(bvh, &mut { *ray }, state, hits, leaves);
         }
     }
@@ -247,9 +259,15 @@ impl Accel {
     /// True when no triangle blocks `ray` within its (tmin, tmax).
     #[inline]
     pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
+        self.unblocked_with(Baseline, ray, state)
+    }
+
+    /// [`Accel::unblocked`] with the node test `test`.
+    #[inline(always)]
+    pub fn unblocked_with(&self, test: impl NodeTest, ray: &Ray, state: &mut Traversal) -> bool {
         let mut blocked = false;
         let shear = Shear::new(ray);
-        self.walk(ray, state, |base, mask, r| {
+        self.walk(test, ray, state, |base, mask, r| {
             blocked = for_blocks(base, mask, |block, lanes| {
                 self.packs[block as usize].any(r, &shear, lanes)
             });

@@ -9,6 +9,9 @@
 use crate::accel::{Accel, InputTri, build_params};
 use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
+#[cfg(target_arch = "x86_64")]
+use crate::isa::Avx2;
+use crate::isa::{Baseline, NodeTest};
 use eyeadapt_scene::{MaterialId, Scene};
 use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
@@ -221,9 +224,30 @@ impl Geometry {
         tmax: f32,
     ) -> Option<Hit> {
         let ray = Ray::new(origin, dir, 0.0, tmax);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = crate::isa::wide() {
+            // SAFETY: an `Avx2` exists only where the CPU has AVX2.
+            return unsafe { self.intersect_avx2(avx2, scratch, ray) };
+        }
+        self.intersect_in(Baseline, scratch, ray)
+    }
+
+    /// [`Geometry::intersect_in`] compiled for AVX2, so that its node tests inline.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn intersect_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> Option<Hit> {
+        self.intersect_in(avx2, scratch, ray)
+    }
+
+    /// [`Geometry::intersect_with`] with the node test `test`.
+    #[inline(always)]
+    fn intersect_in(&self, test: impl NodeTest, scratch: &mut RayScratch, ray: Ray) -> Option<Hit> {
         match &self.levels {
             Levels::Flat(a) => {
-                let h = a.closest(&ray, &mut scratch.bottom)?;
+                let h = a.closest_with(test, &ray, &mut scratch.bottom)?;
                 let info = a.info[h.slot as usize];
                 Some(Hit {
                     t: h.t,
@@ -239,11 +263,11 @@ impl Geometry {
             } => {
                 let mut best = (0u32, 0u32);
                 let bottom = &mut scratch.bottom;
-                let h = crate::traverse::closest_hit(top, ray, &mut scratch.top, |k, r| {
+                let h = crate::traverse::closest_hit(top, test, ray, &mut scratch.top, |k, r| {
                     let i = top_instance[k as usize];
                     let inst = &self.instances[i as usize];
                     let local = object_ray(inst, r);
-                    match meshes[inst.mesh as usize].closest(&local, bottom) {
+                    match meshes[inst.mesh as usize].closest_with(test, &local, bottom) {
                         Some(h) => {
                             best = (i, h.slot);
                             h.t
@@ -275,17 +299,39 @@ impl Geometry {
         tmax: f32,
     ) -> bool {
         let ray = Ray::new(origin, dir, 0.0, tmax);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = crate::isa::wide() {
+            // SAFETY: an `Avx2` exists only where the CPU has AVX2.
+            return unsafe { self.unoccluded_avx2(avx2, scratch, ray) };
+        }
+        self.unoccluded_in(Baseline, scratch, ray)
+    }
+
+    /// [`Geometry::unoccluded_in`] compiled for AVX2, so that its node tests inline.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn unoccluded_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> bool {
+        self.unoccluded_in(avx2, scratch, ray)
+    }
+
+    /// [`Geometry::unoccluded_with`] with the node test `test`.
+    #[inline(always)]
+    fn unoccluded_in(&self, test: impl NodeTest, scratch: &mut RayScratch, ray: Ray) -> bool {
         match &self.levels {
-            Levels::Flat(a) => a.unblocked(&ray, &mut scratch.bottom),
+            Levels::Flat(a) => a.unblocked_with(test, &ray, &mut scratch.bottom),
             Levels::Two {
                 top,
                 top_instance,
                 meshes,
             } => {
                 let bottom = &mut scratch.bottom;
-                crate::traverse::unoccluded(top, ray, &mut scratch.top, |k, r| {
+                crate::traverse::unoccluded(top, test, ray, &mut scratch.top, |k, r| {
                     let inst = &self.instances[top_instance[k as usize] as usize];
-                    if meshes[inst.mesh as usize].unblocked(&object_ray(inst, r), bottom) {
+                    let local = object_ray(inst, r);
+                    if meshes[inst.mesh as usize].unblocked_with(test, &local, bottom) {
                         f32::INFINITY
                     } else {
                         f32::NEG_INFINITY

@@ -14,27 +14,28 @@
 //! tested four at a time ([`crate::tri4`]), and that the node test is the caller's choice
 //! ([`walk_with`]): small structures keep their planes as floats ([`FloatPlanes`]), which
 //! spares the widening and conversion and gives the same masks.
+use crate::isa::NodeTest;
 use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::{Ray, RayHit};
 
 /// obvhs's lower bound on a child's entry distance (its `node::EPSILON`).
-const NODE_EPSILON: f32 = 0.0001;
+pub(crate) const NODE_EPSILON: f32 = 0.0001;
 
 /// A node's 48 quantised child planes as floats, converted once at build time: what
 /// [`node_hits`] widens and converts on every test (a fifth of its instructions), and the
 /// node's [`ChildWords`], extent and origin beside them. 256 bytes a node, so [`crate::accel`] keeps them only
 /// for small structures.
 #[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(16))]
+#[repr(C, align(32))]
 pub struct FloatPlanes {
     /// min x, max x, min y, max y, min z, max z of the 8 children, in node order.
-    q: [[f32; 8]; 6],
-    words: ChildWords,
+    pub(crate) q: [[f32; 8]; 6],
+    pub(crate) words: ChildWords,
     /// The node's quantisation step per axis (`compute_extent`) and its origin `p`.
-    extent: Vec3A,
-    origin: Vec3A,
+    pub(crate) extent: Vec3A,
+    pub(crate) origin: Vec3A,
 }
 
 impl FloatPlanes {
@@ -57,7 +58,7 @@ impl FloatPlanes {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C, align(16))]
 pub struct ChildWords {
-    w: [u32; 8],
+    pub(crate) w: [u32; 8],
 }
 
 impl ChildWords {
@@ -81,7 +82,7 @@ impl ChildWords {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub struct ChildSelect {
-    w: [u32; 8],
+    pub(crate) w: [u32; 8],
     /// obvhs's `Traversal::oct_inv4` of the ray's direction.
     pub oct_inv4: u32,
 }
@@ -244,7 +245,14 @@ fn entered(
 fn mask_by_meta(node: &CwBvhNode, oct_inv4: u32, lanes: [std::arch::x86_64::__m128; 2]) -> u32 {
     use std::arch::x86_64::_mm_movemask_ps;
     // SAFETY: SSE2 is part of the x86_64 baseline.
-    let mut m = unsafe { _mm_movemask_ps(lanes[0]) | _mm_movemask_ps(lanes[1]) << 4 } as u32;
+    let m = unsafe { _mm_movemask_ps(lanes[0]) | _mm_movemask_ps(lanes[1]) << 4 } as u32;
+    mask_from_lanes(node, oct_inv4, m)
+}
+
+/// The hit mask of the children whose bits are set in `m` (bit c: child c entered), the way
+/// obvhs makes it: each entered child's bits from `get_child_and_index_bits`, one at a time.
+#[inline(always)]
+pub(crate) fn mask_from_lanes(node: &CwBvhNode, oct_inv4: u32, mut m: u32) -> u32 {
     let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let mut hit_mask = 0;
     while m != 0 {
@@ -326,7 +334,7 @@ const ONES: [u8; 256] = {
     t
 };
 
-/// Walks the nodes `ray` enters, in obvhs's order (its `traverse!` macro, step for step), and
+/// Walks the nodes `ray` enters (node test `test`, obvhs's metadata form), in obvhs's order (its `traverse!` macro, step for step), and
 /// hands each entered node's hit leaf triangles to `leaves(base, mask, ray)`: slot `base + i`
 /// for each set bit i of `mask` (at most 24 bits). `leaves` may shorten `ray.tmax` (the node
 /// tests after it see the shorter ray) and returns true to stop the walk.
@@ -336,6 +344,7 @@ const ONES: [u8; 256] = {
 #[inline(always)]
 pub fn walk(
     bvh: &CwBvh,
+    test: impl NodeTest,
     ray: &mut Ray,
     state: &mut Traversal,
     leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
@@ -344,7 +353,7 @@ pub fn walk(
         bvh,
         ray,
         state,
-        |i, r, oct| node_hits(&bvh.nodes[i], r, oct),
+        |i, r, oct| test.meta(&bvh.nodes[i], r, oct),
         leaves,
     );
 }
@@ -412,13 +421,14 @@ pub fn walk_with(
 #[inline(always)]
 pub fn closest_hit(
     bvh: &CwBvh,
+    test: impl NodeTest,
     ray: Ray,
     state: &mut Traversal,
     mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> Option<RayHit> {
     let mut traverse_ray = ray;
     let mut hit = RayHit::none();
-    walk(bvh, &mut traverse_ray, state, |base, mask, r| {
+    walk(bvh, test, &mut traverse_ray, state, |base, mask, r| {
         each_slot(base, mask, |slot| {
             let t = prim_hit(slot, r);
             if t < r.tmax {
@@ -437,13 +447,14 @@ pub fn closest_hit(
 #[inline(always)]
 pub fn unoccluded(
     bvh: &CwBvh,
+    test: impl NodeTest,
     ray: Ray,
     state: &mut Traversal,
     mut prim_hit: impl FnMut(u32, &Ray) -> f32,
 ) -> bool {
     let mut miss = true;
     let mut ray = ray;
-    walk(bvh, &mut ray, state, |base, mask, r| {
+    walk(bvh, test, &mut ray, state, |base, mask, r| {
         let blocked = each_slot(base, mask, |slot| prim_hit(slot, r) < r.tmax);
         miss &= !blocked;
         blocked

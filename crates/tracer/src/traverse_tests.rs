@@ -111,9 +111,13 @@ fn a_negative_zero_direction_component_still_hits() {
             0.0,
             100.0,
         );
-        let hit = closest_hit(&bvh, ray, &mut Traversal::default(), |i, r| {
-            rt[i as usize].intersect(r)
-        });
+        let hit = closest_hit(
+            &bvh,
+            crate::isa::Baseline,
+            ray,
+            &mut Traversal::default(),
+            |i, r| rt[i as usize].intersect(r),
+        );
         let t = hit.map(|h| h.t).unwrap_or(f32::INFINITY);
         assert!((t - 5.32).abs() < 1e-4, "dx = {dx:?}: t = {t}");
     }

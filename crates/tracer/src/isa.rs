@@ -1,0 +1,96 @@
+//! Which node test the traversal runs: the x86-64 baseline's SSE2 one, or, on CPUs that have
+//! AVX2, the same test on all eight children in one 256-bit register ([`crate::traverse_avx2`]).
+//! Both give the same hit masks bit for bit (the same IEEE operations in the same order, one
+//! lane per child, and never FMA), so a farm that mixes old and new nodes still writes the same
+//! frames; `tests/cpu_features.rs` renders with each and compares the files.
+//!
+//! The choice is made once per process: AVX2 when the CPU reports it, unless the environment
+//! sets `EYEADAPT_SIMD=baseline` (for that comparison, and to rule the wide path out when
+//! chasing a problem).
+use crate::traverse::{ChildSelect, ChildWords, FloatPlanes};
+use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::ray::Ray;
+use std::sync::OnceLock;
+
+/// A node test: the three forms of [`crate::traverse`]'s (float planes, byte planes with
+/// [`ChildWords`], byte planes with obvhs's child metadata), each giving the same mask as
+/// obvhs's `CwBvhNode::intersect_ray`.
+pub trait NodeTest: Copy {
+    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32;
+    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32;
+    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32;
+}
+
+/// The x86-64 baseline's node tests (two SSE2 halves of four children).
+#[derive(Clone, Copy, Debug)]
+pub struct Baseline;
+
+impl NodeTest for Baseline {
+    #[inline(always)]
+    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
+        crate::traverse::node_hits_float(planes, sel, ray)
+    }
+    #[inline(always)]
+    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
+        crate::traverse::node_hits_words(node, words, sel, ray)
+    }
+    #[inline(always)]
+    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
+        crate::traverse::node_hits(node, ray, oct_inv4)
+    }
+}
+
+/// The AVX2 node tests. A value exists only where the CPU has AVX2 ([`wide`]): holding one is
+/// the proof that calling them is sound.
+#[derive(Clone, Copy, Debug)]
+pub struct Avx2(());
+
+#[cfg(target_arch = "x86_64")]
+impl NodeTest for Avx2 {
+    #[inline(always)]
+    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
+        // SAFETY: an `Avx2` is only made where the CPU has AVX2.
+        unsafe { crate::traverse_avx2::node_hits_float(planes, sel, ray) }
+    }
+    #[inline(always)]
+    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
+        // SAFETY: as above.
+        unsafe { crate::traverse_avx2::node_hits_words(node, words, sel, ray) }
+    }
+    #[inline(always)]
+    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
+        // SAFETY: as above.
+        unsafe { crate::traverse_avx2::node_hits(node, ray, oct_inv4) }
+    }
+}
+
+/// The AVX2 node tests when this process uses them: the CPU has AVX2 and `EYEADAPT_SIMD` is
+/// not `baseline`.
+pub fn wide() -> Option<Avx2> {
+    static WIDE: OnceLock<bool> = OnceLock::new();
+    let on = *WIDE.get_or_init(|| {
+        let asked = std::env::var("EYEADAPT_SIMD").map_or(true, |v| v != "baseline");
+        asked && has_avx2()
+    });
+    on.then_some(Avx2(()))
+}
+
+/// Whether the CPU has AVX2 (an `Avx2` made from this alone is sound; [`wide`] also asks
+/// the environment).
+pub fn has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// An [`Avx2`] whenever the CPU has it, whatever the environment says (for tests that compare
+/// the two node tests).
+#[cfg(test)]
+pub fn avx2() -> Option<Avx2> {
+    has_avx2().then_some(Avx2(()))
+}
