@@ -348,7 +348,7 @@ fn eye_message(readings: &[Reading], total: f64) -> String {
             });
             let share = 100.0 * r.seconds / total.max(1e-9);
             format!(
-                "eye u'v' = {uv}; eye sensor {:.3} s = {share:.1} % of the frame",
+                "eye u'v' = {uv}; eye sensor {:.3} s = {share:.2} % of the frame",
                 r.seconds
             )
         }
