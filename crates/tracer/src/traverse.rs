@@ -120,7 +120,7 @@ impl ChildSelect {
 
 /// A node's quantised child planes: min x, max x, min y, max y, min z, max z, 8 children each.
 #[inline(always)]
-fn plane_fields(node: &CwBvhNode) -> [&[u8; 8]; 6] {
+pub(crate) fn plane_fields(node: &CwBvhNode) -> [&[u8; 8]; 6] {
     [
         &node.child_min_x,
         &node.child_max_x,

@@ -4,7 +4,9 @@
 //! and random rays — in about half the instructions. Callers hold an [`crate::isa::Avx2`], made
 //! only where the CPU has AVX2, and call these from code compiled for AVX2 (so they inline).
 #![cfg(target_arch = "x86_64")]
-use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, NODE_EPSILON, mask_from_lanes};
+use crate::traverse::{
+    ChildSelect, ChildWords, FloatPlanes, NODE_EPSILON, mask_from_lanes, plane_fields,
+};
 use glam::Vec3A;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
@@ -63,14 +65,7 @@ pub unsafe fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
 #[target_feature(enable = "avx2")]
 #[inline]
 fn byte_planes(node: &CwBvhNode) -> impl Fn(usize) -> __m256 {
-    let fields = [
-        &node.child_min_x,
-        &node.child_max_x,
-        &node.child_min_y,
-        &node.child_max_y,
-        &node.child_min_z,
-        &node.child_max_z,
-    ];
+    let fields = plane_fields(node);
     // SAFETY: the load reads the 8 bytes of a [u8; 8] field; the caller has AVX2.
     move |f| unsafe {
         let v = _mm_loadl_epi64(fields[f].as_ptr() as *const __m128i);
