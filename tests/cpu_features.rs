@@ -134,3 +134,40 @@ fn frames_and_adaptation_colours_do_not_depend_on_the_cpus_fma() {
         );
     }
 }
+
+/// `eyeadapt render builtin:cornell-box` at 8 × 8, 1 spp, into `out`, with `EYEADAPT_SIMD=simd`.
+fn tiny_render(simd: &str, out: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+        .env("EYEADAPT_SIMD", simd)
+        .args([
+            "render",
+            "builtin:cornell-box",
+            "--width",
+            "8",
+            "--height",
+            "8",
+        ])
+        .args(["--spp", "1", "--out"])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn an_unknown_eyeadapt_simd_value_is_refused_before_anything_is_written() {
+    let out = std::env::temp_dir().join(format!("eyeadapt-simd-refused-{}", std::process::id()));
+    let st = tiny_render("avx512", &out);
+    let stderr = String::from_utf8_lossy(&st.stderr);
+    assert_eq!(st.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("EYEADAPT_SIMD") && stderr.contains("\"avx512\""),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "{} was created", out.display());
+    // The accepted values run.
+    for v in ["auto", "baseline"] {
+        let st = tiny_render(v, &out);
+        assert!(st.status.success(), "{v}: {st:?}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}

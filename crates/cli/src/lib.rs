@@ -48,6 +48,8 @@ pub fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> Result<(), Failure> {
+    // Before anything is read or written: a misspelt value must not pass for `auto` unseen.
+    eyeadapt_tracer::simd_setting().map_err(Failure::Input)?;
     if let Some(t) = cli.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t)

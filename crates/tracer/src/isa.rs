@@ -64,15 +64,29 @@ impl NodeTest for Avx2 {
     }
 }
 
-/// The AVX2 node tests when this process uses them: the CPU has AVX2 and `EYEADAPT_SIMD` is
-/// not `baseline`.
+/// The AVX2 node tests when this process uses them: the CPU has AVX2 and `EYEADAPT_SIMD`
+/// ([`simd_setting`]) does not say `baseline` (a value it rejects counts as `auto` here; the
+/// command line refuses it before it starts).
 pub fn wide() -> Option<Avx2> {
     static WIDE: OnceLock<bool> = OnceLock::new();
-    let on = *WIDE.get_or_init(|| {
-        let asked = std::env::var("EYEADAPT_SIMD").map_or(true, |v| v != "baseline");
-        asked && has_avx2()
-    });
+    let on = *WIDE.get_or_init(|| simd_setting().unwrap_or(true) && has_avx2());
     on.then_some(Avx2(()))
+}
+
+/// What the environment's `EYEADAPT_SIMD` asks for: `Ok(true)` the AVX2 node tests where the
+/// CPU has them (unset, empty or `auto`), `Ok(false)` the baseline's (`baseline`), and an error
+/// naming the variable and its accepted values for anything else.
+pub fn simd_setting() -> Result<bool, String> {
+    match std::env::var_os("EYEADAPT_SIMD") {
+        None => Ok(true),
+        Some(v) => match v.to_str() {
+            Some("" | "auto") => Ok(true),
+            Some("baseline") => Ok(false),
+            _ => Err(format!(
+                "environment variable EYEADAPT_SIMD: {v:?} is not one of auto, baseline"
+            )),
+        },
+    }
 }
 
 /// Whether the CPU has AVX2 (an `Avx2` made from this alone is sound; [`wide`] also asks

@@ -69,6 +69,7 @@ pub use crate::geometry::{Geometry, Hit, RayScratch};
 pub use crate::guiding::{DTree, Guiding, SdTree, from_square, to_square};
 pub use crate::integrator::{AchromaticSpecular, Origin, PathSample, PathSettings, trace};
 pub use crate::interaction::SurfaceInteraction;
+pub use crate::isa::simd_setting;
 pub use crate::lights::LightSet;
 pub use crate::material::Materials;
 pub use crate::revision::RENDER_REVISION;

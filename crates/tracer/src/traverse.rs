@@ -189,7 +189,7 @@ fn byte_planes(
 /// The node's quantisation step per axis and its origin, decoded.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn box_of(node: &CwBvhNode) -> (Vec3A, Vec3A) {
+pub(crate) fn box_of(node: &CwBvhNode) -> (Vec3A, Vec3A) {
     (node.compute_extent(), Vec3A::from(node.p))
 }
 
@@ -334,10 +334,11 @@ const ONES: [u8; 256] = {
     t
 };
 
-/// Walks the nodes `ray` enters (node test `test`, obvhs's metadata form), in obvhs's order (its `traverse!` macro, step for step), and
-/// hands each entered node's hit leaf triangles to `leaves(base, mask, ray)`: slot `base + i`
-/// for each set bit i of `mask` (at most 24 bits). `leaves` may shorten `ray.tmax` (the node
-/// tests after it see the shorter ray) and returns true to stop the walk.
+/// Walks the nodes `ray` enters (node test: `test`'s metadata form), in obvhs's order (its
+/// `traverse!` macro, step for step), and hands each entered node's hit leaf triangles to
+/// `leaves(base, mask, ray)`: slot `base + i` for each set bit i of `mask` (at most 24 bits).
+/// `leaves` may shorten `ray.tmax` (the node tests after it see the shorter ray) and returns
+/// true to stop the walk.
 ///
 /// `state` is scratch space, reset here: reusing one per path saves zeroing obvhs's 256-byte
 /// traversal stack for every ray (a `memset` call, 2 % of a Cornell-box render).

@@ -5,7 +5,7 @@
 //! only where the CPU has AVX2, and call these from code compiled for AVX2 (so they inline).
 #![cfg(target_arch = "x86_64")]
 use crate::traverse::{
-    ChildSelect, ChildWords, FloatPlanes, NODE_EPSILON, mask_from_lanes, plane_fields,
+    ChildSelect, ChildWords, FloatPlanes, NODE_EPSILON, box_of, mask_from_lanes, plane_fields,
 };
 use glam::Vec3A;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -38,11 +38,7 @@ pub unsafe fn node_hits_words(
     sel: &ChildSelect,
     ray: &Ray,
 ) -> u32 {
-    let lanes = entered(
-        (node.compute_extent(), Vec3A::from(node.p)),
-        ray,
-        byte_planes(node),
-    );
+    let lanes = entered(box_of(node), ray, byte_planes(node));
     mask_by_words(words, sel, lanes)
 }
 
@@ -53,11 +49,7 @@ pub unsafe fn node_hits_words(
 #[target_feature(enable = "avx2")]
 #[inline]
 pub unsafe fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
-    let lanes = entered(
-        (node.compute_extent(), Vec3A::from(node.p)),
-        ray,
-        byte_planes(node),
-    );
+    let lanes = entered(box_of(node), ray, byte_planes(node));
     mask_from_lanes(node, oct_inv4, _mm256_movemask_ps(lanes) as u32)
 }
 
