@@ -8,6 +8,7 @@
 //! together into the scene's two levels.
 use crate::isa::{Baseline, NodeTest};
 use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, walk_with};
+use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use glam::{Vec2, Vec3A};
@@ -203,19 +204,96 @@ impl Accel {
     ) -> Option<SlotHit> {
         let mut best = None;
         let shear = Shear::new(ray);
-        self.walk(test, ray, state, |base, mask, r| {
+        self.walk(test, ray, state, self.closest_leaves(&shear, &mut best));
+        best
+    }
+
+    /// [`Accel::closest_with`] of `ray` and [`Accel::unblocked_with`] of `shadow`, walked
+    /// together ([`crate::traverse_pair`]): the same answers as the two calls.
+    #[inline(always)]
+    pub fn closest_and_unblocked_with(
+        &self,
+        test: impl NodeTest,
+        (ray, state): (&Ray, &mut Traversal),
+        (shadow, shadow_state): (&Ray, &mut Traversal),
+    ) -> (Option<SlotHit>, bool) {
+        let (mut best, mut blocked) = (None, false);
+        let (shear, shadow_shear) = (Shear::new(ray), Shear::new(shadow));
+        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
+        let (sel, shadow_sel) = (
+            ChildSelect::new(ray.direction),
+            ChildSelect::new(shadow.direction),
+        );
+        let (mut r, mut s) = (*ray, *shadow);
+        let leaves = self.closest_leaves(&shear, &mut best);
+        let shadow_leaves = self.blocking_leaves(&shadow_shear, &mut blocked);
+        if planes.is_empty() {
+            let a = Walk {
+                ray: &mut r,
+                state,
+                hits: |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r),
+                leaves,
+            };
+            let b = Walk {
+                ray: &mut s,
+                state: shadow_state,
+                hits: |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], shadow_sel, r),
+                leaves: shadow_leaves,
+            };
+            walk_pair(bvh, a, b);
+        } else {
+            let a = Walk {
+                ray: &mut r,
+                state,
+                hits: |i: usize, r: &Ray, _| test.float(&planes[i], sel, r),
+                leaves,
+            };
+            let b = Walk {
+                ray: &mut s,
+                state: shadow_state,
+                hits: |i: usize, r: &Ray, _| test.float(&planes[i], shadow_sel, r),
+                leaves: shadow_leaves,
+            };
+            walk_pair(bvh, a, b);
+        }
+        (best, !blocked)
+    }
+
+    /// The leaf test of a closest-hit walk: each hit triangle nearer than the ray's end
+    /// shortens the ray and becomes `best`.
+    #[inline(always)]
+    fn closest_leaves<'a>(
+        &'a self,
+        shear: &'a Shear,
+        best: &'a mut Option<SlotHit>,
+    ) -> impl FnMut(u32, u32, &mut Ray) -> bool + 'a {
+        move |base, mask, r| {
             for_blocks(base, mask, |block, lanes| {
-                if let Some((t, lane)) = self.packs[block as usize].closest(r, &shear, lanes) {
+                if let Some((t, lane)) = self.packs[block as usize].closest(r, shear, lanes) {
                     r.tmax = t;
-                    best = Some(SlotHit {
+                    *best = Some(SlotHit {
                         t,
                         slot: block * 4 + lane,
                     });
                 }
                 false
             })
-        });
-        best
+        }
+    }
+
+    /// The leaf test of a shadow walk: any hit triangle sets `blocked` and stops the walk.
+    #[inline(always)]
+    fn blocking_leaves<'a>(
+        &'a self,
+        shear: &'a Shear,
+        blocked: &'a mut bool,
+    ) -> impl FnMut(u32, u32, &mut Ray) -> bool + 'a {
+        move |base, mask, r| {
+            *blocked = for_blocks(base, mask, |block, lanes| {
+                self.packs[block as usize].any(r, shear, lanes)
+            });
+            *blocked
+        }
     }
 
     /// [`crate::traverse::walk`] over this structure with `test`'s float-plane form when the
@@ -267,12 +345,7 @@ impl Accel {
     pub fn unblocked_with(&self, test: impl NodeTest, ray: &Ray, state: &mut Traversal) -> bool {
         let mut blocked = false;
         let shear = Shear::new(ray);
-        self.walk(test, ray, state, |base, mask, r| {
-            blocked = for_blocks(base, mask, |block, lanes| {
-                self.packs[block as usize].any(r, &shear, lanes)
-            });
-            blocked
-        });
+        self.walk(test, ray, state, self.blocking_leaves(&shear, &mut blocked));
         !blocked
     }
 

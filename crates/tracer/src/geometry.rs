@@ -9,9 +9,8 @@
 use crate::accel::{Accel, InputTri, build_params};
 use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
-#[cfg(target_arch = "x86_64")]
-use crate::isa::Avx2;
-use crate::isa::{Baseline, NodeTest};
+
+mod query;
 use eyeadapt_scene::{MaterialId, Scene};
 use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
@@ -66,6 +65,8 @@ pub struct Geometry {
 pub struct RayScratch {
     top: Traversal,
     bottom: Traversal,
+    /// The shadow ray's, while it is walked together with a path's next ray.
+    shadow: Traversal,
 }
 
 /// A ray's closest hit: distance, instance, the mesh's triangle and the BVH slot it sits in.
@@ -201,6 +202,7 @@ impl Geometry {
         RayScratch {
             top: Traversal::default(),
             bottom: Traversal::default(),
+            shadow: Traversal::default(),
         }
     }
 
@@ -212,133 +214,6 @@ impl Geometry {
     /// Triangles that can be hit, as placed (every instance counts its mesh's).
     pub fn triangle_count(&self) -> usize {
         self.triangles
-    }
-
-    /// The closest hit along `dir` (unit) from `origin` within (0, tmax).
-    #[inline]
-    pub fn intersect_with(
-        &self,
-        scratch: &mut RayScratch,
-        origin: Vec3A,
-        dir: Vec3A,
-        tmax: f32,
-    ) -> Option<Hit> {
-        let ray = Ray::new(origin, dir, 0.0, tmax);
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx2) = crate::isa::wide() {
-            // SAFETY: an `Avx2` exists only where the CPU has AVX2.
-            return unsafe { self.intersect_avx2(avx2, scratch, ray) };
-        }
-        self.intersect_in(Baseline, scratch, ray)
-    }
-
-    /// [`Geometry::intersect_in`] compiled for AVX2, so that its node tests inline.
-    ///
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn intersect_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> Option<Hit> {
-        self.intersect_in(avx2, scratch, ray)
-    }
-
-    /// [`Geometry::intersect_with`] with the node test `test`.
-    #[inline(always)]
-    fn intersect_in(&self, test: impl NodeTest, scratch: &mut RayScratch, ray: Ray) -> Option<Hit> {
-        match &self.levels {
-            Levels::Flat(a) => {
-                let h = a.closest_with(test, &ray, &mut scratch.bottom)?;
-                let info = a.info[h.slot as usize];
-                Some(Hit {
-                    t: h.t,
-                    instance: info.instance,
-                    prim: info.prim,
-                    slot: h.slot,
-                })
-            }
-            Levels::Two {
-                top,
-                top_instance,
-                meshes,
-            } => {
-                let mut best = (0u32, 0u32);
-                let bottom = &mut scratch.bottom;
-                let h = crate::traverse::closest_hit(top, test, ray, &mut scratch.top, |k, r| {
-                    let i = top_instance[k as usize];
-                    let inst = &self.instances[i as usize];
-                    let local = object_ray(inst, r);
-                    match meshes[inst.mesh as usize].closest_with(test, &local, bottom) {
-                        Some(h) => {
-                            best = (i, h.slot);
-                            h.t
-                        }
-                        None => f32::INFINITY,
-                    }
-                })?;
-                let (instance, slot) = best;
-                let prim = meshes[self.instances[instance as usize].mesh as usize].info
-                    [slot as usize]
-                    .prim;
-                Some(Hit {
-                    t: h.t,
-                    instance,
-                    prim,
-                    slot,
-                })
-            }
-        }
-    }
-
-    /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
-    #[inline]
-    pub fn unoccluded_with(
-        &self,
-        scratch: &mut RayScratch,
-        origin: Vec3A,
-        dir: Vec3A,
-        tmax: f32,
-    ) -> bool {
-        let ray = Ray::new(origin, dir, 0.0, tmax);
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx2) = crate::isa::wide() {
-            // SAFETY: an `Avx2` exists only where the CPU has AVX2.
-            return unsafe { self.unoccluded_avx2(avx2, scratch, ray) };
-        }
-        self.unoccluded_in(Baseline, scratch, ray)
-    }
-
-    /// [`Geometry::unoccluded_in`] compiled for AVX2, so that its node tests inline.
-    ///
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn unoccluded_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> bool {
-        self.unoccluded_in(avx2, scratch, ray)
-    }
-
-    /// [`Geometry::unoccluded_with`] with the node test `test`.
-    #[inline(always)]
-    fn unoccluded_in(&self, test: impl NodeTest, scratch: &mut RayScratch, ray: Ray) -> bool {
-        match &self.levels {
-            Levels::Flat(a) => a.unblocked_with(test, &ray, &mut scratch.bottom),
-            Levels::Two {
-                top,
-                top_instance,
-                meshes,
-            } => {
-                let bottom = &mut scratch.bottom;
-                crate::traverse::unoccluded(top, test, ray, &mut scratch.top, |k, r| {
-                    let inst = &self.instances[top_instance[k as usize] as usize];
-                    let local = object_ray(inst, r);
-                    if meshes[inst.mesh as usize].unblocked_with(test, &local, bottom) {
-                        f32::INFINITY
-                    } else {
-                        f32::NEG_INFINITY
-                    }
-                })
-            }
-        }
     }
 
     /// The material at `hit` (the [`SurfaceInteraction::material`] of its interaction).

@@ -8,7 +8,7 @@
 use crate::emitter::luminance;
 use crate::geometry::RayScratch;
 use crate::guiding::{Record, SdTree};
-use crate::path_state::{PathState, Vertex, VertexSamples};
+use crate::path_state::{PathState, ShadowRay, Vertex, VertexSamples};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
 use glam::Vec3A;
@@ -161,12 +161,9 @@ pub fn visible(
     wi: Vec3A,
     dist: f32,
 ) -> bool {
-    let tmax = if dist.is_finite() {
-        dist * (1.0 - 2e-4)
-    } else {
-        f32::INFINITY
-    };
-    scene.geometry.unoccluded_with(scratch, from, wi, tmax)
+    scene
+        .geometry
+        .unoccluded_with(scratch, from, wi, crate::shadow::shadow_tmax(dist))
 }
 
 /// Traces one path from `origin` along `dir` and returns its radiance plus first-vertex AOVs
@@ -228,12 +225,27 @@ pub(crate) fn trace_guided(
     } else {
         settings.max_depth as u32
     };
+    // A vertex's shadow ray, walked together with the ray that continues the path.
+    let mut shadow: Option<ShadowRay> = None;
     loop {
         s.start_group();
-        let Some(hit) = scene
-            .geometry
-            .intersect_with(scratch, path.o, path.d, f32::INFINITY)
-        else {
+        let hit = match shadow.take() {
+            None => scene
+                .geometry
+                .intersect_with(scratch, path.o, path.d, f32::INFINITY),
+            Some(sh) => {
+                let (hit, free) = scene.geometry.intersect_and_unoccluded(
+                    scratch,
+                    (path.o, path.d, f32::INFINITY),
+                    (sh.from, sh.wi, sh.tmax),
+                );
+                if free {
+                    path.add_light(sh.add);
+                }
+                hit
+            }
+        };
+        let Some(hit) = hit else {
             path.escape(&scene.lights);
             break;
         };
@@ -251,11 +263,19 @@ pub(crate) fn trace_guided(
         let v = Vertex::new(scene, &si, -path.d, &u);
         let g = if last { None } else { path.guide_at(&v) };
         if !last {
-            path.sample_light(scene, scratch, &v, &u, g);
+            shadow = path.sample_light(scene, scratch, &v, &u, g);
         }
         if !path.scatter(&v, &u, last, g) || !path.roulette(settings.rr_depth, u.rr) {
             break;
         }
+    }
+    // The path ended with a shadow ray left: alone, then.
+    if let Some(sh) = shadow
+        && scene
+            .geometry
+            .unoccluded_with(scratch, sh.from, sh.wi, sh.tmax)
+    {
+        path.add_light(sh.add);
     }
     if let (Some(r), Some(tree), Some(out)) = (&path.recorder, guide, records) {
         r.finish(path.out.l, tree, out);

@@ -50,6 +50,7 @@ mod shadow;
 mod texture;
 mod traverse;
 mod traverse_avx2;
+mod traverse_pair;
 mod tri4;
 mod triangle;
 mod trig;

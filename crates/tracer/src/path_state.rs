@@ -28,7 +28,7 @@ use crate::material::Leaf;
 use crate::microfacet::fresnel_refract;
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
-use crate::shadow::shadow_transmittance;
+use crate::shadow::{shadow_tmax, shadow_transmittance};
 use glam::Vec3A;
 
 /// The state of a path between steps.
@@ -112,6 +112,22 @@ pub struct VertexSamples {
     mask: f32,
     bsdf: [f32; 2],
     light_next: [f32; 2],
+}
+
+/// A light sample's shadow ray, still to be traced, and what the path gains if it is free.
+pub struct ShadowRay {
+    pub from: Vec3A,
+    pub wi: Vec3A,
+    pub tmax: f32,
+    pub add: LightAdd,
+}
+
+/// What a light sample adds to the path's radiance and its two re-renders.
+#[derive(Clone, Copy)]
+pub struct LightAdd {
+    l: Vec3A,
+    achromatic: Vec3A,
+    irradiance: Vec3A,
 }
 
 impl VertexSamples {
@@ -324,9 +340,11 @@ impl<'g> PathState<'g> {
     /// Adds radiance `c` that reached the camera through a vertex after the AOV vertex.
     #[inline]
     fn add_through_later_vertex(&mut self, c: Vec3A) {
-        self.out.l += c;
-        self.out.achromatic += c * self.ka;
-        self.out.irradiance += c * self.ke;
+        self.add_light(LightAdd {
+            l: c,
+            achromatic: c * self.ka,
+            irradiance: c * self.ke,
+        });
     }
 
     /// The ray left the scene: the environment, weighted against light sampling.
@@ -381,6 +399,10 @@ impl<'g> PathState<'g> {
     }
 
     /// Next-event estimation at `v`: one light sample, MIS-weighted against BSDF sampling.
+    /// Where its shadow ray is a plain any-hit test (no see-through surfaces, no training
+    /// records that read the radiance so far), the ray is returned with what it adds once
+    /// free, for the caller to trace together with the path's next ray and then
+    /// [`PathState::add_light`]; otherwise it is traced here.
     #[inline]
     pub fn sample_light(
         &mut self,
@@ -389,9 +411,9 @@ impl<'g> PathState<'g> {
         v: &Vertex,
         u: &VertexSamples,
         g: Option<GuideAt>,
-    ) {
+    ) -> Option<ShadowRay> {
         if v.bsdf.is_delta() {
-            return;
+            return None;
         }
         let transmits = v.bsdf.has_transmission();
         // A BSDF that only reflects sees light on the viewer's side only, which lets the
@@ -401,12 +423,10 @@ impl<'g> PathState<'g> {
         } else {
             (v.p_front, Some(v.ng))
         };
-        let Some(ls) = scene.lights.sample(p, n, u.pick, self.u_light) else {
-            return;
-        };
+        let ls = scene.lights.sample(p, n, u.pick, self.u_light)?;
         let (from, front) = v.origin_towards(ls.wi);
         if !front && !transmits {
-            return;
+            return None;
         }
         let wi_l = v.frame.to_local(ls.wi);
         // Shadow rays pass thin panes and, unless the scene blocks them there, masks' holes
@@ -414,11 +434,16 @@ impl<'g> PathState<'g> {
         let f_surface = v.bsdf.eval(v.wo_l, wi_l) * v.shadowing(ls.wi);
         let f = f_surface * v.opacity;
         if f.max_element() <= 0.0 {
-            return;
+            return None;
         }
-        let tr = shadow_transmittance(scene, scratch, from, ls.wi, ls.dist);
+        let deferred = !scene.see_through && self.recorder.is_none();
+        let tr = if deferred {
+            Vec3A::ONE
+        } else {
+            shadow_transmittance(scene, scratch, from, ls.wi, ls.dist)
+        };
         if tr.max_element() <= 0.0 {
-            return;
+            return None;
         }
         let w = if ls.delta {
             1.0
@@ -430,16 +455,40 @@ impl<'g> PathState<'g> {
             }
         };
         let c = self.beta * f * ls.li * tr * (wi_l.z.abs() * w / ls.pdf);
-        if self.specular_chain {
-            self.out.l += c;
+        let add = if self.specular_chain {
             // The surface's own BSDF, not its mask's share: the irradiance of a half-transparent
             // surface is counted with its opacity as the probability of scattering there.
-            self.out.achromatic +=
-                c * self.achromatic_factor(v, f_surface, wi_l, v.shadowing(ls.wi));
-            self.out.irradiance += c * irradiance_ratio(f_surface);
+            LightAdd {
+                l: c,
+                achromatic: c * self.achromatic_factor(v, f_surface, wi_l, v.shadowing(ls.wi)),
+                irradiance: c * irradiance_ratio(f_surface),
+            }
         } else {
-            self.add_through_later_vertex(c);
+            // Through a vertex after the AOV vertex.
+            LightAdd {
+                l: c,
+                achromatic: c * self.ka,
+                irradiance: c * self.ke,
+            }
+        };
+        if !deferred {
+            self.add_light(add);
+            return None;
         }
+        Some(ShadowRay {
+            from,
+            wi: ls.wi,
+            tmax: shadow_tmax(ls.dist),
+            add,
+        })
+    }
+
+    /// Adds a light sample's contribution (once its shadow ray found the way free).
+    #[inline]
+    pub fn add_light(&mut self, add: LightAdd) {
+        self.out.l += add.l;
+        self.out.achromatic += add.achromatic;
+        self.out.irradiance += add.irradiance;
     }
 
     /// Continues the path along a BSDF sample at `v`, reflected or transmitted; false when

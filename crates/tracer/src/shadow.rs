@@ -50,12 +50,7 @@ pub fn shadow_transmittance(
             Vec3A::ZERO
         };
     }
-    // The same end of the segment as `visible` (just short of the light sample).
-    let tmax = if dist.is_finite() {
-        dist * (1.0 - 2e-4)
-    } else {
-        f32::INFINITY
-    };
+    let tmax = shadow_tmax(dist);
     let mut tr = Vec3A::ONE;
     let mut o = from;
     // At most this many see-through surfaces on one segment: beyond, the light counts as
@@ -94,6 +89,17 @@ pub fn shadow_transmittance(
         o = offset(si.p, -ng);
     }
     Vec3A::ZERO
+}
+
+/// Where a shadow ray to a light sample at distance `dist` (∞ for the environment and the
+/// sun) ends: just short of the sample, so that the light's own surface does not block it.
+#[inline]
+pub fn shadow_tmax(dist: f32) -> f32 {
+    if dist.is_finite() {
+        dist * (1.0 - 2e-4)
+    } else {
+        f32::INFINITY
+    }
 }
 
 /// The expected share of light that `si`, seen along `wo`, passes straight on: the

@@ -18,6 +18,7 @@ use crate::isa::NodeTest;
 use glam::{UVec2, Vec3A};
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
+use obvhs::faststack::FastStack;
 use obvhs::ray::{Ray, RayHit};
 
 /// obvhs's lower bound on a child's entry distance (its `node::EPSILON`).
@@ -369,50 +370,86 @@ pub fn walk_with(
     hits: impl Fn(usize, &Ray, u32) -> u32,
     mut leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
 ) {
-    use obvhs::faststack::FastStack;
-    if bvh.nodes.is_empty() {
+    let Some(mut at) = Cursor::start(bvh, ray, state) else {
         return;
-    }
-    state.reinit(ray.direction);
-    let oct_inv4 = state.oct_inv4;
-    // (first child node, child hit bits in the top byte | imask) and (first slot, slot bits).
-    let mut nodes = UVec2::new(0, 0x8000_0000);
-    let mut prims = UVec2::ZERO;
-    loop {
-        if prims.y != 0 && leaves(prims.x, prims.y, ray) {
-            return;
+    };
+    while !at.step(bvh, ray, state, &hits, &mut leaves) {}
+}
+
+/// Where a [`walk_with`] stands between two of its steps: the node group it is in and the
+/// leaf triangles it has still to hand over. Two cursors on two rays can be stepped in turn
+/// ([`crate::traverse_pair`]); each walks exactly as it would alone.
+#[derive(Clone, Copy)]
+pub struct Cursor {
+    /// (first child node, child hit bits in the top byte | imask).
+    nodes: UVec2,
+    /// (first slot, slot bits).
+    prims: UVec2,
+    oct_inv4: u32,
+}
+
+impl Cursor {
+    /// A walk of `ray` from the root, `state` reset for it; `None` for an empty structure.
+    #[inline(always)]
+    pub fn start(bvh: &CwBvh, ray: &Ray, state: &mut Traversal) -> Option<Cursor> {
+        if bvh.nodes.is_empty() {
+            return None;
         }
-        prims = UVec2::ZERO;
-        if nodes.y & 0xff00_0000 != 0 {
-            let hits_imask = nodes.y;
+        state.reinit(ray.direction);
+        Some(Cursor {
+            nodes: UVec2::new(0, 0x8000_0000),
+            prims: UVec2::ZERO,
+            oct_inv4: state.oct_inv4,
+        })
+    }
+
+    /// One round of the walk (obvhs's `traverse!` loop body): the pending leaves, then one
+    /// node; true when the walk is over (`leaves` stopped it, or nothing is left). Not to be
+    /// called again after it returned true.
+    #[inline(always)]
+    pub fn step(
+        &mut self,
+        bvh: &CwBvh,
+        ray: &mut Ray,
+        state: &mut Traversal,
+        hits: &impl Fn(usize, &Ray, u32) -> u32,
+        leaves: &mut impl FnMut(u32, u32, &mut Ray) -> bool,
+    ) -> bool {
+        if self.prims.y != 0 && leaves(self.prims.x, self.prims.y, ray) {
+            return true;
+        }
+        self.prims = UVec2::ZERO;
+        if self.nodes.y & 0xff00_0000 != 0 {
+            let hits_imask = self.nodes.y;
             // `| 1` tells the compiler the value is not 0 (a bit of the top byte is set), so
             // this is one `bsr` without the baseline's zero fix-up.
             let child_bit = 31 - (hits_imask | 1).leading_zeros();
-            nodes.y &= !(1u32 << child_bit);
-            if nodes.y & 0xff00_0000 != 0 {
-                state.stack.push(nodes);
+            self.nodes.y &= !(1u32 << child_bit);
+            if self.nodes.y & 0xff00_0000 != 0 {
+                state.stack.push(self.nodes);
             }
-            let slot_index = (child_bit - 24) ^ (oct_inv4 & 0xff);
+            let slot_index = (child_bit - 24) ^ (self.oct_inv4 & 0xff);
             // The inner children before this one: imask bits below its slot (a byte).
             let relative_index = ONES[(hits_imask & !(u32::MAX << slot_index) & 0xff) as usize];
             let relative_index = relative_index as u32;
-            let index = (nodes.x + relative_index) as usize;
+            let index = (self.nodes.x + relative_index) as usize;
             let node = &bvh.nodes[index];
-            let hit_mask = hits(index, ray, oct_inv4);
-            nodes = UVec2::new(
+            let hit_mask = hits(index, ray, self.oct_inv4);
+            self.nodes = UVec2::new(
                 node.child_base_idx,
                 (hit_mask & 0xff00_0000) | node.imask as u32,
             );
-            prims = UVec2::new(node.primitive_base_idx, hit_mask & 0x00ff_ffff);
+            self.prims = UVec2::new(node.primitive_base_idx, hit_mask & 0x00ff_ffff);
         } else {
-            nodes = UVec2::ZERO;
+            self.nodes = UVec2::ZERO;
         }
-        if prims.y == 0 && nodes.y & 0xff00_0000 == 0 {
+        if self.prims.y == 0 && self.nodes.y & 0xff00_0000 == 0 {
             if state.stack.is_empty() {
-                return;
+                return true;
             }
-            nodes = state.stack.pop_fast();
+            self.nodes = state.stack.pop_fast();
         }
+        false
     }
 }
 

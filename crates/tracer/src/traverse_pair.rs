@@ -1,0 +1,148 @@
+//! Two walks of one structure, stepped in turn: a path's shadow ray and its next ray.
+//!
+//! One walk is a chain of dependent steps (a node's test decides the next node to load), so a
+//! lone ray leaves most of the core idle while it waits on loads and on the node test's
+//! latency. The shadow ray of a vertex's light sample and the ray that continues the path
+//! from the same vertex do not depend on each other; walking them together, one step of each
+//! per round, gives the core two independent chains to overlap.
+//!
+//! Each walk takes exactly the steps it takes alone ([`Cursor::step`]), with its own ray,
+//! stack and leaf test, so the results are those of two separate walks, bit for bit.
+use crate::traverse::Cursor;
+use obvhs::cwbvh::{CwBvh, Traversal};
+use obvhs::ray::Ray;
+
+/// One walk's own part: its ray, its traversal state, its node test and its leaf test (as
+/// for [`crate::traverse::walk_with`]).
+pub struct Walk<'a, H, L> {
+    pub ray: &'a mut Ray,
+    pub state: &'a mut Traversal,
+    pub hits: H,
+    pub leaves: L,
+}
+
+impl<H, L> Walk<'_, H, L>
+where
+    H: Fn(usize, &Ray, u32) -> u32,
+    L: FnMut(u32, u32, &mut Ray) -> bool,
+{
+    #[inline(always)]
+    fn step(&mut self, bvh: &CwBvh, at: &mut Cursor) -> bool {
+        at.step(bvh, self.ray, self.state, &self.hits, &mut self.leaves)
+    }
+
+    #[inline(always)]
+    fn finish(&mut self, bvh: &CwBvh, at: &mut Cursor) {
+        while !self.step(bvh, at) {}
+    }
+}
+
+/// Walks `a` and `b` through `bvh`, one step of each in turn until one is over, then the
+/// other to its end.
+#[inline(always)]
+pub fn walk_pair<Ha, La, Hb, Lb>(bvh: &CwBvh, mut a: Walk<Ha, La>, mut b: Walk<Hb, Lb>)
+where
+    Ha: Fn(usize, &Ray, u32) -> u32,
+    La: FnMut(u32, u32, &mut Ray) -> bool,
+    Hb: Fn(usize, &Ray, u32) -> u32,
+    Lb: FnMut(u32, u32, &mut Ray) -> bool,
+{
+    let Some(mut at_a) = Cursor::start(bvh, a.ray, a.state) else {
+        return;
+    };
+    let Some(mut at_b) = Cursor::start(bvh, b.ray, b.state) else {
+        return;
+    };
+    loop {
+        let a_done = a.step(bvh, &mut at_a);
+        let b_done = b.step(bvh, &mut at_b);
+        match (a_done, b_done) {
+            (false, false) => continue,
+            (true, false) => b.finish(bvh, &mut at_b),
+            (false, true) => a.finish(bvh, &mut at_a),
+            (true, true) => {}
+        }
+        return;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::InputTri;
+    use crate::accel::Accel;
+    use crate::isa::{Baseline, NodeTest};
+    use glam::Vec3A;
+    use obvhs::cwbvh::Traversal;
+    use obvhs::ray::Ray;
+
+    fn p3(s: &mut u64) -> Vec3A {
+        Vec3A::from([0, 1, 2].map(|_| {
+            *s += 1;
+            (crate::mix64(*s) >> 40) as f32 / (1u64 << 24) as f32
+        }))
+    }
+
+    /// Random triangles, some tiny, some long, in a 20-unit cube.
+    fn soup(n: usize) -> Vec<InputTri> {
+        let mut s = 3u64 << 32;
+        (0..n)
+            .map(|k| {
+                let c = p3(&mut s) * 20.0 - 10.0;
+                let size = if k % 3 == 0 { 0.01 } else { 2.0 };
+                let mut e = || (p3(&mut s) - 0.5) * size;
+                InputTri {
+                    v: [c, c + e(), c + e()],
+                    instance: 0,
+                    prim: k as u32,
+                }
+            })
+            .collect()
+    }
+
+    /// Walked together or one after the other, a closest-hit ray and a shadow ray get the
+    /// same answers, for both node-test forms and every instruction set here.
+    fn compare(accel: &Accel, test: impl NodeTest, name: &str) {
+        let mut s = 17u64 << 32;
+        let (mut st, mut st_shadow) = (Traversal::default(), Traversal::default());
+        let (mut hits, mut blocked) = (0, 0);
+        for k in 0..3000 {
+            let o = p3(&mut s) * 30.0 - 15.0;
+            let d = (p3(&mut s) - 0.5).normalize();
+            let ray = Ray::new(o, d, 0.0, f32::INFINITY);
+            // Shadow rays from the same origin: to the sky, or to a point at some distance.
+            let to = p3(&mut s) * 20.0 - 10.0;
+            let tmax = if k % 3 == 0 {
+                f32::INFINITY
+            } else {
+                (to - o).length()
+            };
+            let shadow = Ray::new(o, (to - o).normalize(), 0.0, tmax);
+            let (h, free) =
+                accel.closest_and_unblocked_with(test, (&ray, &mut st), (&shadow, &mut st_shadow));
+            let alone = accel.closest_with(test, &ray, &mut st);
+            let free_alone = accel.unblocked_with(test, &shadow, &mut st);
+            let key = |h: Option<crate::accel::SlotHit>| h.map(|h| (h.t.to_bits(), h.slot));
+            assert_eq!(key(h), key(alone), "{name}: ray {k}");
+            assert_eq!(free, free_alone, "{name}: shadow ray {k}");
+            hits += h.is_some() as u32;
+            blocked += !free as u32;
+        }
+        // Both outcomes of both queries occur often, so the walks end in either order.
+        assert!((500..2500).contains(&hits), "{name}: {hits} hits");
+        assert!((500..2500).contains(&blocked), "{name}: {blocked} blocked");
+    }
+
+    #[test]
+    fn walking_two_rays_together_answers_what_walking_them_apart_does() {
+        let tris = soup(4000);
+        let floats = Accel::build(&tris);
+        let bytes = Accel::build(&tris).with_byte_planes();
+        compare(&floats, Baseline, "float planes, baseline");
+        compare(&bytes, Baseline, "byte planes, baseline");
+        #[cfg(target_arch = "x86_64")]
+        if let Some(wide) = crate::isa::avx2() {
+            compare(&floats, wide, "float planes, AVX2");
+            compare(&bytes, wide, "byte planes, AVX2");
+        }
+    }
+}
