@@ -7,7 +7,7 @@
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
 use crate::isa::{Baseline, NodeTest};
-use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, walk_with};
+use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, Leaves, walk_with};
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
@@ -259,53 +259,38 @@ impl Accel {
         (best, !blocked)
     }
 
-    /// The leaf test of a closest-hit walk: each hit triangle nearer than the ray's end
-    /// shortens the ray and becomes `best`.
+    /// The leaf test of a closest-hit walk.
     #[inline(always)]
     fn closest_leaves<'a>(
         &'a self,
         shear: &'a Shear,
         best: &'a mut Option<SlotHit>,
-    ) -> impl FnMut(u32, u32, &mut Ray) -> bool + 'a {
-        move |base, mask, r| {
-            for_blocks(base, mask, |block, lanes| {
-                if let Some((t, lane)) = self.packs[block as usize].closest(r, shear, lanes) {
-                    r.tmax = t;
-                    *best = Some(SlotHit {
-                        t,
-                        slot: block * 4 + lane,
-                    });
-                }
-                false
-            })
+    ) -> ClosestLeaves<'a> {
+        ClosestLeaves {
+            packs: &self.packs,
+            shear,
+            best,
         }
     }
 
-    /// The leaf test of a shadow walk: any hit triangle sets `blocked` and stops the walk.
+    /// The leaf test of a shadow walk.
     #[inline(always)]
     fn blocking_leaves<'a>(
         &'a self,
         shear: &'a Shear,
         blocked: &'a mut bool,
-    ) -> impl FnMut(u32, u32, &mut Ray) -> bool + 'a {
-        move |base, mask, r| {
-            *blocked = for_blocks(base, mask, |block, lanes| {
-                self.packs[block as usize].any(r, shear, lanes)
-            });
-            *blocked
+    ) -> BlockingLeaves<'a> {
+        BlockingLeaves {
+            packs: &self.packs,
+            shear,
+            blocked,
         }
     }
 
     /// [`crate::traverse::walk`] over this structure with `test`'s float-plane form when the
     /// planes are kept, its byte form otherwise.
     #[inline(always)]
-    fn walk(
-        &self,
-        test: impl NodeTest,
-        ray: &Ray,
-        state: &mut Traversal,
-        leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
-    ) {
+    fn walk(&self, test: impl NodeTest, ray: &Ray, state: &mut Traversal, leaves: impl Leaves) {
         let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
         let sel = ChildSelect::new(ray.direction);
         if planes.is_empty() {
@@ -386,6 +371,47 @@ impl Accel {
             + self.info.len() * std::mem::size_of::<TriInfo>()
             + self.planes.len() * std::mem::size_of::<FloatPlanes>()
             + self.words.len() * std::mem::size_of::<ChildWords>()
+    }
+}
+
+/// The leaf test of a closest-hit walk: each hit triangle nearer than the ray's end shortens
+/// the ray and becomes `best`.
+struct ClosestLeaves<'a> {
+    packs: &'a [Tri4],
+    shear: &'a Shear,
+    best: &'a mut Option<SlotHit>,
+}
+
+impl Leaves for ClosestLeaves<'_> {
+    #[inline(always)]
+    fn visit(&mut self, base: u32, mask: u32, r: &mut Ray) -> bool {
+        for_blocks(base, mask, |block, lanes| {
+            if let Some((t, lane)) = self.packs[block as usize].closest(r, self.shear, lanes) {
+                r.tmax = t;
+                *self.best = Some(SlotHit {
+                    t,
+                    slot: block * 4 + lane,
+                });
+            }
+            false
+        })
+    }
+}
+
+/// The leaf test of a shadow walk: any hit triangle sets `blocked` and stops the walk.
+struct BlockingLeaves<'a> {
+    packs: &'a [Tri4],
+    shear: &'a Shear,
+    blocked: &'a mut bool,
+}
+
+impl Leaves for BlockingLeaves<'_> {
+    #[inline(always)]
+    fn visit(&mut self, base: u32, mask: u32, r: &mut Ray) -> bool {
+        *self.blocked = for_blocks(base, mask, |block, lanes| {
+            self.packs[block as usize].any(r, self.shear, lanes)
+        });
+        *self.blocked
     }
 }
 

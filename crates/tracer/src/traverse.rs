@@ -349,7 +349,7 @@ pub fn walk(
     test: impl NodeTest,
     ray: &mut Ray,
     state: &mut Traversal,
-    leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
+    leaves: impl Leaves,
 ) {
     walk_with(
         bvh,
@@ -360,6 +360,22 @@ pub fn walk(
     );
 }
 
+/// What a walk does with an entered node's hit triangles: `visit(base, mask, ray)` gets slot
+/// `base + i` for each set bit i of `mask`, may shorten `ray.tmax`, and returns true to stop
+/// the walk. Any such closure is one; [`crate::accel`]'s leaf tests are types of their own
+/// whose `visit` is inlined into the walk (a closure's body may stay a call, with the walk's
+/// state spilled around it).
+pub trait Leaves {
+    fn visit(&mut self, base: u32, mask: u32, ray: &mut Ray) -> bool;
+}
+
+impl<F: FnMut(u32, u32, &mut Ray) -> bool> Leaves for F {
+    #[inline(always)]
+    fn visit(&mut self, base: u32, mask: u32, ray: &mut Ray) -> bool {
+        self(base, mask, ray)
+    }
+}
+
 /// [`walk`] with its node test given: `hits(i, ray, oct_inv4)` is [`node_hits`] of node `i`
 /// (or a test that gives the same masks, such as [`node_hits_float`]).
 #[inline(always)]
@@ -368,7 +384,7 @@ pub fn walk_with(
     ray: &mut Ray,
     state: &mut Traversal,
     hits: impl Fn(usize, &Ray, u32) -> u32,
-    mut leaves: impl FnMut(u32, u32, &mut Ray) -> bool,
+    mut leaves: impl Leaves,
 ) {
     let Some(mut at) = Cursor::start(bvh, ray, state) else {
         return;
@@ -413,9 +429,9 @@ impl Cursor {
         ray: &mut Ray,
         state: &mut Traversal,
         hits: &impl Fn(usize, &Ray, u32) -> u32,
-        leaves: &mut impl FnMut(u32, u32, &mut Ray) -> bool,
+        leaves: &mut impl Leaves,
     ) -> bool {
-        if self.prims.y != 0 && leaves(self.prims.x, self.prims.y, ray) {
+        if self.prims.y != 0 && leaves.visit(self.prims.x, self.prims.y, ray) {
             return true;
         }
         self.prims = UVec2::ZERO;
@@ -466,17 +482,23 @@ pub fn closest_hit(
 ) -> Option<RayHit> {
     let mut traverse_ray = ray;
     let mut hit = RayHit::none();
-    walk(bvh, test, &mut traverse_ray, state, |base, mask, r| {
-        each_slot(base, mask, |slot| {
-            let t = prim_hit(slot, r);
-            if t < r.tmax {
-                hit.primitive_id = slot;
-                hit.t = t;
-                r.tmax = t;
-            }
-            false
-        })
-    });
+    walk(
+        bvh,
+        test,
+        &mut traverse_ray,
+        state,
+        |base, mask, r: &mut Ray| {
+            each_slot(base, mask, |slot| {
+                let t = prim_hit(slot, r);
+                if t < r.tmax {
+                    hit.primitive_id = slot;
+                    hit.t = t;
+                    r.tmax = t;
+                }
+                false
+            })
+        },
+    );
     (hit.t < ray.tmax).then_some(hit)
 }
 
@@ -492,7 +514,7 @@ pub fn unoccluded(
 ) -> bool {
     let mut miss = true;
     let mut ray = ray;
-    walk(bvh, test, &mut ray, state, |base, mask, r| {
+    walk(bvh, test, &mut ray, state, |base, mask, r: &mut Ray| {
         let blocked = each_slot(base, mask, |slot| prim_hit(slot, r) < r.tmax);
         miss &= !blocked;
         blocked

@@ -8,7 +8,7 @@
 //!
 //! Each walk takes exactly the steps it takes alone ([`Cursor::step`]), with its own ray,
 //! stack and leaf test, so the results are those of two separate walks, bit for bit.
-use crate::traverse::Cursor;
+use crate::traverse::{Cursor, Leaves};
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
 
@@ -24,7 +24,7 @@ pub struct Walk<'a, H, L> {
 impl<H, L> Walk<'_, H, L>
 where
     H: Fn(usize, &Ray, u32) -> u32,
-    L: FnMut(u32, u32, &mut Ray) -> bool,
+    L: Leaves,
 {
     #[inline(always)]
     fn step(&mut self, bvh: &CwBvh, at: &mut Cursor) -> bool {
@@ -43,9 +43,9 @@ where
 pub fn walk_pair<Ha, La, Hb, Lb>(bvh: &CwBvh, mut a: Walk<Ha, La>, mut b: Walk<Hb, Lb>)
 where
     Ha: Fn(usize, &Ray, u32) -> u32,
-    La: FnMut(u32, u32, &mut Ray) -> bool,
+    La: Leaves,
     Hb: Fn(usize, &Ray, u32) -> u32,
-    Lb: FnMut(u32, u32, &mut Ray) -> bool,
+    Lb: Leaves,
 {
     let Some(mut at_a) = Cursor::start(bvh, a.ray, a.state) else {
         return;
