@@ -225,7 +225,9 @@ pub(crate) fn trace_guided(
     } else {
         settings.max_depth as u32
     };
-    // A vertex's shadow ray, walked together with the ray that continues the path.
+    // A vertex's shadow ray, walked together with the ray that continues the path
+    // (`traverse_pair.rs`). Its light is added right after that walk, before anything the next
+    // hit adds, so the path's sums are made in the same order as when it was traced at once.
     let mut shadow: Option<ShadowRay> = None;
     loop {
         s.start_group();

@@ -340,11 +340,17 @@ impl<'g> PathState<'g> {
     /// Adds radiance `c` that reached the camera through a vertex after the AOV vertex.
     #[inline]
     fn add_through_later_vertex(&mut self, c: Vec3A) {
-        self.add_light(LightAdd {
+        self.add_light(self.through_later_vertex(c));
+    }
+
+    /// What radiance `c` reaching the camera through a vertex after the AOV vertex adds.
+    #[inline]
+    fn through_later_vertex(&self, c: Vec3A) -> LightAdd {
+        LightAdd {
             l: c,
             achromatic: c * self.ka,
             irradiance: c * self.ke,
-        });
+        }
     }
 
     /// The ray left the scene: the environment, weighted against light sampling.
@@ -464,12 +470,7 @@ impl<'g> PathState<'g> {
                 irradiance: c * irradiance_ratio(f_surface),
             }
         } else {
-            // Through a vertex after the AOV vertex.
-            LightAdd {
-                l: c,
-                achromatic: c * self.ka,
-                irradiance: c * self.ke,
-            }
+            self.through_later_vertex(c)
         };
         if !deferred {
             self.add_light(add);
