@@ -66,3 +66,42 @@ pub fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     }
     out
 }
+
+/// What a SIGKILLed `sequence` run may leave in `dir/adaptation.csv`: the header, the rows of
+/// every committed frame whole, then at most a prefix of the row file of the frame in flight.
+/// The frame's rows go to the CSV in one `write`, but Linux ends a write to a regular file
+/// short when a fatal signal arrives between two of its pages, so a kill can cut that frame's
+/// rows anywhere; the next run rebuilds the CSV from the committed row files. Frames are
+/// committed in order, so the frame in flight, if any, has the last row file. Returns true
+/// when the CSV ends inside the frame in flight.
+pub fn assert_killed_csv_intact(dir: &Path, committed: usize) -> bool {
+    let Ok(csv) = std::fs::read_to_string(dir.join("adaptation.csv")) else {
+        return false;
+    };
+    let Some((header, _)) = csv.split_once('\n') else {
+        assert!(csv.is_empty(), "the CSV's header is torn: {csv:?}");
+        return false;
+    };
+    let mut rows: Vec<_> = walk(&dir.join("rows"));
+    rows.sort();
+    let files: Vec<String> = rows
+        .iter()
+        .map(|(_, p)| std::fs::read_to_string(p).unwrap())
+        .collect();
+    assert!(
+        files.len() <= committed + 1,
+        "{} row files for {committed} committed frames",
+        files.len()
+    );
+    let committed_text = format!("{header}\n{}", files[..committed.min(files.len())].concat());
+    let everything = format!("{header}\n{}", files.concat());
+    assert!(
+        csv.starts_with(&committed_text),
+        "a committed frame's rows are missing or torn in the CSV:\n{csv}"
+    );
+    assert!(
+        everything.starts_with(&csv),
+        "the CSV holds more than the row files:\n{csv}"
+    );
+    !csv.ends_with('\n')
+}

@@ -2,9 +2,11 @@
 //!
 //! Per frame, in this order: render; run every estimator; write the raw EXR/PNG and the
 //! adapted images (each to a temporary name, then renamed); write the frame's CSV rows to
-//! `rows/frame_NNNNNN.csv`; append the same rows to `adaptation.csv` in one `write` call (a
-//! SIGKILL cannot split a single write to a regular file); then atomically rewrite
-//! `manifest.json` with the frame's files and checksums. Only then is the frame committed.
+//! `rows/frame_NNNNNN.csv`; append the same rows to `adaptation.csv` in one `write` call; then
+//! atomically rewrite `manifest.json` with the frame's files and checksums. Only then is the
+//! frame committed. A SIGKILL during the append can still cut it short (Linux ends a write to
+//! a regular file early when a fatal signal arrives between two of its pages), but only the
+//! rows of the uncommitted frame in flight: the committed frames' rows before them are whole.
 //!
 //! On start, frames in the manifest whose files are intact are skipped, and `adaptation.csv`
 //! is rebuilt from the committed frames' row files if it holds anything else (rows of the
@@ -361,7 +363,8 @@ fn append(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .append(true)
         .open(path)
         .map_err(|e| Failure::io("cannot open for append", path, &e))?;
-    // One write call for all of the frame's rows: a kill cannot split it.
+    // One write call for all of the frame's rows. A kill can still end it short at a page
+    // boundary; the frame is not committed then, and the next run rebuilds the CSV.
     f.write_all(bytes)
         .map_err(|e| Failure::io("cannot append to", path, &e))?;
     f.sync_data()
