@@ -264,10 +264,18 @@ pub(crate) fn trace_guided(
         let u = VertexSamples::draw(s);
         let v = Vertex::new(scene, &si, -path.d, &u);
         let g = if last { None } else { path.guide_at(&v) };
+        // The light sample first, the BSDF sample (independent of it) next, then the rest of
+        // next-event estimation: the core overlaps the two (`PathState::light_sample`).
+        let ls = if last {
+            None
+        } else {
+            path.light_sample(scene, &v, &u)
+        };
+        let bs = PathState::sample_bsdf(&v, &u, g);
         if !last {
-            shadow = path.sample_light(scene, scratch, &v, &u, g);
+            shadow = path.sample_light(scene, scratch, &v, ls, g);
         }
-        if !path.scatter(&v, &u, last, g) || !path.roulette(settings.rr_depth, u.rr) {
+        if !path.scatter(&v, &u, last, (g, bs)) || !path.roulette(settings.rr_depth, u.rr) {
             break;
         }
     }

@@ -1,7 +1,8 @@
 //! One path's state between the integrator's named steps, and the steps themselves:
 //! [`PathState::escape`] (the ray left the scene), [`PathState::shade_hit`] (emission at a
-//! hit), [`PathState::sample_light`] (next-event estimation), [`PathState::scatter`] (continue
-//! along a BSDF sample, reflected or transmitted) and [`PathState::roulette`].
+//! hit), [`PathState::light_sample`] and [`PathState::sample_light`] (next-event estimation),
+//! [`PathState::sample_bsdf`] and [`PathState::scatter`] (continue along a BSDF sample,
+//! reflected or transmitted) and [`PathState::roulette`].
 //!
 //! **The AOV vertex** is the first vertex that is not a delta event (the first non-specular
 //! hit): seen through glass, a mirror or a mask's hole, the AOVs (albedo, normal, depth, the
@@ -23,7 +24,7 @@ use crate::integrator::{
     offset, power_heuristic,
 };
 use crate::interaction::SurfaceInteraction;
-use crate::lights::LightSet;
+use crate::lights::{LightSample, LightSet};
 use crate::material::Leaf;
 use crate::microfacet::fresnel_refract;
 use crate::sampler::SampleStream;
@@ -404,32 +405,42 @@ impl<'g> PathState<'g> {
         }
     }
 
-    /// Next-event estimation at `v`: one light sample, MIS-weighted against BSDF sampling.
-    /// Where its shadow ray is a plain any-hit test (no see-through surfaces, no training
-    /// records that read the radiance so far), the ray is returned with what it adds once
-    /// free, for the caller to trace together with the path's next ray and then
-    /// [`PathState::add_light`]; otherwise it is traced here.
+    /// The light sample of next-event estimation at `v` (none for a delta BSDF), for
+    /// [`PathState::sample_light`]. The caller draws it first and the BSDF sample next: the
+    /// light choice is a chain of square roots and divisions and the sample's lookups may miss
+    /// the cache, and the BSDF sample does not depend on them, so the core works on both.
+    #[inline]
+    pub fn light_sample(
+        &self,
+        scene: &SceneData,
+        v: &Vertex,
+        u: &VertexSamples,
+    ) -> Option<LightSample> {
+        if v.bsdf.is_delta() {
+            return None;
+        }
+        // A BSDF that only reflects sees light on the viewer's side only, which lets the
+        // light choice use the normal.
+        let n = (!v.bsdf.has_transmission()).then_some(v.ng);
+        scene.lights.sample(v.p_front, n, u.pick, self.u_light)
+    }
+
+    /// Next-event estimation at `v` with the light sample `ls` ([`PathState::light_sample`]),
+    /// MIS-weighted against BSDF sampling. Where its shadow ray is a plain any-hit test (no
+    /// see-through surfaces, no training records that read the radiance so far), the ray is
+    /// returned with what it adds once free, for the caller to trace together with the path's
+    /// next ray and then [`PathState::add_light`]; otherwise it is traced here.
     #[inline]
     pub fn sample_light(
         &mut self,
         scene: &SceneData,
         scratch: &mut RayScratch,
         v: &Vertex,
-        u: &VertexSamples,
+        ls: Option<LightSample>,
         g: Option<GuideAt>,
     ) -> Option<ShadowRay> {
-        if v.bsdf.is_delta() {
-            return None;
-        }
         let transmits = v.bsdf.has_transmission();
-        // A BSDF that only reflects sees light on the viewer's side only, which lets the
-        // light choice use the normal.
-        let (p, n) = if transmits {
-            (v.p_front, None)
-        } else {
-            (v.p_front, Some(v.ng))
-        };
-        let ls = scene.lights.sample(p, n, u.pick, self.u_light)?;
+        let ls = ls?;
         let (from, front) = v.origin_towards(ls.wi);
         if !front && !transmits {
             return None;
@@ -492,20 +503,12 @@ impl<'g> PathState<'g> {
         self.out.irradiance += add.irradiance;
     }
 
-    /// Continues the path along a BSDF sample at `v`, reflected or transmitted; false when
-    /// the path ends (no sample, or one on the wrong side of the geometric surface). At the
-    /// depth limit (`last`) only a crossing of a see-through surface continues: it is no
-    /// segment, and shadow rays counted what lies behind it.
+    /// The BSDF sample at `v` that [`PathState::scatter`] continues along: straight on through
+    /// a mask's hole, from the guide where guiding applies (`g`), else from the BSDF. It reads
+    /// nothing of the path, so it can be drawn before the light sample is finished.
     #[inline]
-    pub fn scatter(
-        &mut self,
-        v: &Vertex,
-        u: &VertexSamples,
-        last: bool,
-        g: Option<GuideAt>,
-    ) -> bool {
-        let through = u.mask >= v.opacity;
-        let bs = if through {
+    pub fn sample_bsdf(v: &Vertex, u: &VertexSamples, g: Option<GuideAt>) -> Option<BsdfSample> {
+        if u.mask >= v.opacity {
             // Through a mask's hole: straight on, unweighted.
             Some(BsdfSample {
                 wi: -v.wo_l,
@@ -522,7 +525,22 @@ impl<'g> PathState<'g> {
                 pdf: b.pdf * v.opacity,
                 ..b
             })
-        };
+        }
+    }
+
+    /// Continues the path along `bs`, the [`PathState::sample_bsdf`] of `v`, reflected or
+    /// transmitted; false when the path ends (no sample, or one on the wrong side of the
+    /// geometric surface). At the depth limit (`last`) only a crossing of a see-through
+    /// surface continues: it is no segment, and shadow rays counted what lies behind it.
+    #[inline]
+    pub fn scatter(
+        &mut self,
+        v: &Vertex,
+        u: &VertexSamples,
+        last: bool,
+        (g, bs): (Option<GuideAt>, Option<BsdfSample>),
+    ) -> bool {
+        let through = u.mask >= v.opacity;
         let Some(mut bs) = bs else {
             return false;
         };
