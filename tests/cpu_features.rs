@@ -6,6 +6,8 @@
 //! would. The baseline run also sets `EYEADAPT_SIMD=baseline`, so it traverses with the SSE2
 //! node tests where the other run uses the AVX2 ones (`crates/tracer/src/isa.rs`). Other glibc
 //! *versions* are `scripts/glibc-determinism.sh`'s check.
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -135,20 +137,10 @@ fn frames_and_adaptation_colours_do_not_depend_on_the_cpus_fma() {
     }
 }
 
-/// `eyeadapt render builtin:cornell-box` at 8 × 8, 1 spp, into `out`, with `EYEADAPT_SIMD=simd`.
+/// [`common::tiny_render`] with `EYEADAPT_SIMD=simd`.
 fn tiny_render(simd: &str, out: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
+    common::tiny_render(out)
         .env("EYEADAPT_SIMD", simd)
-        .args([
-            "render",
-            "builtin:cornell-box",
-            "--width",
-            "8",
-            "--height",
-            "8",
-        ])
-        .args(["--spp", "1", "--out"])
-        .arg(out)
         .output()
         .unwrap()
 }

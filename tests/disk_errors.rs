@@ -288,18 +288,7 @@ fn output_path_that_is_a_file_exits_2_and_leaves_it_alone() {
             out.display(),
             r.stderr
         );
-        let o = Command::new(env!("CARGO_BIN_EXE_eyeadapt"))
-            .args([
-                "render",
-                "builtin:cornell-box",
-                "--width",
-                "8",
-                "--height",
-                "8",
-            ])
-            .args(["--spp", "1", "--out", out.to_str().unwrap()])
-            .output()
-            .unwrap();
+        let o = common::tiny_render(&out).output().unwrap();
         assert_eq!(o.status.code(), Some(2), "render --out {}", out.display());
     }
     assert_eq!(std::fs::read(&file).unwrap(), b"precious");

@@ -15,6 +15,23 @@ pub const QUICK: &[&str] = &[
     "--no-progress-bar",
 ];
 
+/// `eyeadapt render builtin:cornell-box` at 8 × 8 and 1 spp into `out`: the cheapest render
+/// command, for tests of what happens around rendering.
+pub fn tiny_render(out: &Path) -> std::process::Command {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_eyeadapt"));
+    c.args([
+        "render",
+        "builtin:cornell-box",
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ])
+    .args(["--spp", "1", "--out"])
+    .arg(out);
+    c
+}
+
 /// Every file under `dir`, as (path relative to `dir`, full path); empty when `dir` does not
 /// exist.
 pub fn walk(dir: &Path) -> Vec<(String, PathBuf)> {

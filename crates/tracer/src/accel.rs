@@ -219,44 +219,48 @@ impl Accel {
     ) -> (Option<SlotHit>, bool) {
         let (mut best, mut blocked) = (None, false);
         let (shear, shadow_shear) = (Shear::new(ray), Shear::new(shadow));
-        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
-        let (sel, shadow_sel) = (
-            ChildSelect::new(ray.direction),
-            ChildSelect::new(shadow.direction),
+        let a = (ray, state, self.closest_leaves(&shear, &mut best));
+        let b = (
+            shadow,
+            shadow_state,
+            self.blocking_leaves(&shadow_shear, &mut blocked),
         );
-        let (mut r, mut s) = (*ray, *shadow);
-        let leaves = self.closest_leaves(&shear, &mut best);
-        let shadow_leaves = self.blocking_leaves(&shadow_shear, &mut blocked);
+        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
         if planes.is_empty() {
-            let a = Walk {
-                ray: &mut r,
-                state,
-                hits: |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r),
-                leaves,
-            };
-            let b = Walk {
-                ray: &mut s,
-                state: shadow_state,
-                hits: |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], shadow_sel, r),
-                leaves: shadow_leaves,
-            };
-            walk_pair(bvh, a, b);
+            self.walk_two(a, b, |sel| {
+                move |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r)
+            });
         } else {
-            let a = Walk {
-                ray: &mut r,
-                state,
-                hits: |i: usize, r: &Ray, _| test.float(&planes[i], sel, r),
-                leaves,
-            };
-            let b = Walk {
-                ray: &mut s,
-                state: shadow_state,
-                hits: |i: usize, r: &Ray, _| test.float(&planes[i], shadow_sel, r),
-                leaves: shadow_leaves,
-            };
-            walk_pair(bvh, a, b);
+            self.walk_two(a, b, |sel| {
+                move |i: usize, r: &Ray, _| test.float(&planes[i], sel, r)
+            });
         }
         (best, !blocked)
+    }
+
+    /// Walks rays `a` and `b` with their leaf tests together ([`walk_pair`]), each with the
+    /// node test `node_test` makes for its direction.
+    #[inline(always)]
+    fn walk_two<H: Fn(usize, &Ray, u32) -> u32>(
+        &self,
+        (a, state_a, leaves_a): (&Ray, &mut Traversal, impl Leaves),
+        (b, state_b, leaves_b): (&Ray, &mut Traversal, impl Leaves),
+        node_test: impl Fn(&'static ChildSelect) -> H,
+    ) {
+        let (mut ra, mut rb) = (*a, *b);
+        let a = Walk {
+            hits: node_test(ChildSelect::new(ra.direction)),
+            ray: &mut ra,
+            state: state_a,
+            leaves: leaves_a,
+        };
+        let b = Walk {
+            hits: node_test(ChildSelect::new(rb.direction)),
+            ray: &mut rb,
+            state: state_b,
+            leaves: leaves_b,
+        };
+        walk_pair(&self.bvh, a, b);
     }
 
     /// The leaf test of a closest-hit walk.

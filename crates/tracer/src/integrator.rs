@@ -8,9 +8,10 @@
 use crate::emitter::luminance;
 use crate::geometry::RayScratch;
 use crate::guiding::{Record, SdTree};
-use crate::path_state::{PathState, ShadowRay, Vertex, VertexSamples};
+use crate::path_state::{PathState, ShadowRay};
 use crate::sampler::SampleStream;
 use crate::scene_data::SceneData;
+use crate::vertex::{Vertex, VertexSamples};
 use glam::Vec3A;
 
 /// Path-length settings.

@@ -54,6 +54,7 @@ mod traverse_pair;
 mod tri4;
 mod triangle;
 mod trig;
+mod vertex;
 
 pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};

@@ -26,8 +26,8 @@
 use crate::bsdf::Bsdf;
 use crate::geometry::RayScratch;
 use crate::integrator::{offset, visible};
-use crate::path_state::Vertex;
 use crate::scene_data::SceneData;
+use crate::vertex::Vertex;
 #[cfg(doc)]
 use eyeadapt_scene::CutoutShadows;
 use glam::Vec3A;
