@@ -146,7 +146,7 @@ pub fn eye_sensor_until(
         std::array::from_fn(|b| StreamSeeds::new(hash_key(&[key, 0x4E9_11CA, b as u64])));
     let eye = Vec3A::from(view.position);
     let basis = view.basis();
-    let (r, u, axis) = basis;
+    let (r, u, axis) = basis.axes();
     let one = |i: u32| -> Option<Vec3A> {
         let b = i as usize % EYE_REPLICATES;
         let mut s = SampleStream::seeded(&replicate_seeds[b], i / EYE_REPLICATES as u32);
@@ -264,7 +264,7 @@ pub fn eye_direct_per_light(
 ) -> Vec<(Vec3A, f64)> {
     use crate::emitter::luminance;
     let eye = Vec3A::from(view.position);
-    let (_, _, axis) = view.basis();
+    let axis = view.basis().f;
     let mut out: Vec<(Vec3A, f64)> = Vec::new();
     let lights = &scene.lights;
     let mut scratch = scene.geometry.scratch();

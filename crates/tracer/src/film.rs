@@ -35,6 +35,23 @@ pub struct View {
     pub projection: Projection,
 }
 
+/// A [`View`]'s unit axes, right (`r`), up (`u`) and forward (`f`), orthonormal, and the
+/// tangent of half its vertical field of view ([`View::basis`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Basis {
+    pub r: Vec3A,
+    pub u: Vec3A,
+    pub f: Vec3A,
+    tan: f32,
+}
+
+impl Basis {
+    /// (right, up, forward).
+    pub fn axes(&self) -> (Vec3A, Vec3A, Vec3A) {
+        (self.r, self.u, self.f)
+    }
+}
+
 impl View {
     pub fn from_camera(c: &eyeadapt_scene::Camera) -> View {
         View {
@@ -48,32 +65,38 @@ impl View {
         }
     }
 
-    /// (right, up, forward), orthonormal.
-    pub fn basis(&self) -> (Vec3A, Vec3A, Vec3A) {
+    /// The camera's axes, and what its rays share: made once per pixel (or frame), not per
+    /// sample (the field of view's `tanf` was 1 % of a Cornell-box render).
+    pub fn basis(&self) -> Basis {
         let f = Vec3A::from(self.forward).normalize();
         let r = f.cross(self.up.into()).normalize();
-        (r, r.cross(f), f)
+        Basis {
+            r,
+            u: r.cross(f),
+            f,
+            tan: libm::tanf(self.fov_deg.to_radians() * 0.5),
+        }
     }
 
     /// Unit direction through image position (x, y) in pixels (y down, (0,0) top-left corner).
     #[inline]
-    pub fn ray_dir(&self, basis: (Vec3A, Vec3A, Vec3A), x: f32, y: f32) -> Vec3A {
-        let (r, u, f) = basis;
-        let (sx, sy) = self.screen(x, y);
+    pub fn ray_dir(&self, basis: Basis, x: f32, y: f32) -> Vec3A {
+        let Basis { r, u, f, .. } = basis;
+        let (sx, sy) = self.screen(basis, x, y);
         (f + r * sx + u * sy).normalize()
     }
 
     /// The point of the plane one unit along the view that image position (x, y) looks at,
     /// as (right, up) offsets; a shifted projection moves it by its shift.
     #[inline]
-    fn screen(&self, x: f32, y: f32) -> (f32, f32) {
+    fn screen(&self, basis: Basis, x: f32, y: f32) -> (f32, f32) {
         let (dx, dy) = match self.projection {
             Projection::Shifted {
                 shift_x, shift_y, ..
             } => (shift_x * self.width as f32, shift_y * self.height as f32),
             _ => (0.0, 0.0),
         };
-        let tan = libm::tanf(self.fov_deg.to_radians() * 0.5);
+        let tan = basis.tan;
         let aspect = self.width as f32 / self.height as f32;
         let sx = (2.0 * (x + dx) / self.width as f32 - 1.0) * tan * aspect;
         let sy = (1.0 - 2.0 * (y + dy) / self.height as f32) * tan;
@@ -86,13 +109,13 @@ impl View {
     #[inline]
     fn lens_ray(
         &self,
-        basis: (Vec3A, Vec3A, Vec3A),
+        basis: Basis,
         d: Vec3A,
         aperture_radius: f32,
         focus_distance: f32,
         lens: [f32; 2],
     ) -> (Vec3A, Vec3A) {
-        let (r, u, _) = basis;
+        let Basis { r, u, .. } = basis;
         let origin = Vec3A::from(self.position);
         let focus = origin + d * focus_distance;
         let rad = aperture_radius * lens[0].sqrt();
@@ -104,14 +127,8 @@ impl View {
     /// The camera ray through image position (x, y) (as [`View::ray_dir`]): origin and unit
     /// direction; `lens` is a 2-D sample of the thin lens's aperture (unused otherwise).
     #[inline]
-    pub fn ray(
-        &self,
-        basis: (Vec3A, Vec3A, Vec3A),
-        x: f32,
-        y: f32,
-        lens: [f32; 2],
-    ) -> (Vec3A, Vec3A) {
-        let (r, u, f) = basis;
+    pub fn ray(&self, basis: Basis, x: f32, y: f32, lens: [f32; 2]) -> (Vec3A, Vec3A) {
+        let Basis { r, u, f, .. } = basis;
         let origin = Vec3A::from(self.position);
         match self.projection {
             Projection::Pinhole => (origin, self.ray_dir(basis, x, y)),
@@ -119,7 +136,7 @@ impl View {
                 aperture_radius,
                 focus_distance,
             } => {
-                let (sx, sy) = self.screen(x, y);
+                let (sx, sy) = self.screen(basis, x, y);
                 self.lens_ray(
                     basis,
                     f + r * sx + u * sy,
@@ -133,7 +150,7 @@ impl View {
                 focus_distance,
                 ..
             } => {
-                let (sx, sy) = self.screen(x, y);
+                let (sx, sy) = self.screen(basis, x, y);
                 let d = f + r * sx + u * sy;
                 if aperture_radius > 0.0 {
                     self.lens_ray(basis, d, aperture_radius, focus_distance, lens)
@@ -153,15 +170,15 @@ impl View {
     }
 
     /// True when direction `d` (unit) lies inside the view frustum.
-    pub fn in_frustum(&self, basis: (Vec3A, Vec3A, Vec3A), d: Vec3A) -> bool {
-        let (r, u, f) = basis;
+    pub fn in_frustum(&self, basis: Basis, d: Vec3A) -> bool {
+        let Basis { r, u, f, .. } = basis;
         let z = d.dot(f);
         if z <= 0.0 {
             return false;
         }
         // The image's corners, in the plane one unit along the view.
-        let (x0, y0) = self.screen(0.0, self.height as f32);
-        let (x1, y1) = self.screen(self.width as f32, 0.0);
+        let (x0, y0) = self.screen(basis, 0.0, self.height as f32);
+        let (x1, y1) = self.screen(basis, self.width as f32, 0.0);
         let (sx, sy) = (d.dot(r) / z, d.dot(u) / z);
         (x0..=x1).contains(&sx) && (y0..=y1).contains(&sy)
     }

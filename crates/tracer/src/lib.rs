@@ -67,7 +67,9 @@ pub use crate::eye::{
     EYE_REPLICATES, EYE_ROUND, EyeEstimate, EyeSettings, eye_direct_per_light, eye_sensor,
     eye_sensor_until, sample_cardioid,
 };
-pub use crate::film::{Frame, RenderSettings, RenderStats, View, render, render_with_progress};
+pub use crate::film::{
+    Basis, Frame, RenderSettings, RenderStats, View, render, render_with_progress,
+};
 pub use crate::geometry::{Geometry, Hit, RayScratch};
 pub use crate::guiding::{DTree, Guiding, SdTree, from_square, to_square};
 pub use crate::integrator::{AchromaticSpecular, Origin, PathSample, PathSettings, trace};

@@ -154,7 +154,7 @@ fn cube_map(data: &SceneData, view: &View, n: u32, spp: u32) -> DVec3 {
             projection: eyeadapt_scene::Projection::Pinhole,
         };
         let img = render(data, &face, &settings(spp, 200 + k as u64, DEPTH));
-        let (r, u, f) = face.basis();
+        let (r, u, f) = face.basis().axes();
         for j in 0..n {
             for i in 0..n {
                 let a = 2.0 * (i as f64 + 0.5) / n as f64 - 1.0;
