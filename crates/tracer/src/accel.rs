@@ -7,7 +7,6 @@
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
 use crate::isa::{Baseline, NodeTest};
-use crate::prefetch::prefetch;
 use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, Leaves, walk_with};
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
@@ -273,7 +272,6 @@ impl Accel {
     ) -> ClosestLeaves<'a> {
         ClosestLeaves {
             packs: &self.packs,
-            info: &self.info,
             shear,
             best,
         }
@@ -384,9 +382,6 @@ impl Accel {
 /// the ray and becomes `best`.
 struct ClosestLeaves<'a> {
     packs: &'a [Tri4],
-    /// Prefetched at each new closest hit: the hit's interaction reads the slot's record
-    /// first, and on large meshes that read missed the cache after the walk.
-    info: &'a [TriInfo],
     shear: &'a Shear,
     best: &'a mut Option<SlotHit>,
 }
@@ -397,9 +392,10 @@ impl Leaves for ClosestLeaves<'_> {
         for_blocks(base, mask, |block, lanes| {
             if let Some((t, lane)) = self.packs[block as usize].closest(r, self.shear, lanes) {
                 r.tmax = t;
-                let slot = block * 4 + lane;
-                prefetch(self.info, slot as usize);
-                *self.best = Some(SlotHit { t, slot });
+                *self.best = Some(SlotHit {
+                    t,
+                    slot: block * 4 + lane,
+                });
             }
             false
         })

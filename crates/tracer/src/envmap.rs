@@ -13,7 +13,6 @@ use crate::bilinear;
 use crate::distribution2d::Distribution2D;
 use crate::emitter::luminance;
 use crate::fmath::{cell_index, floor};
-use crate::prefetch::prefetch;
 use crate::trig::sincos_turns;
 use eyeadapt_scene::EnvironmentMap;
 use glam::{Mat3A, Vec3A};
@@ -295,14 +294,6 @@ impl LatLong {
         let (p, pdf) = self.dist.sample(u);
         // The point's place in its cell is uniform: redraw it from the bilinear luminance.
         let ([i, j], f, corners) = self.cell_at(p);
-        // The radiance `lookup` reads at the end lies within a texel of cell (i, j), in its
-        // row and the next: start loading it now, so that the miss overlaps the direction's
-        // trigonometry instead of following it.
-        let stride = self.w + 1;
-        for r in [j.min(self.h - 1), (j + 1).min(self.h - 1)] {
-            prefetch(&self.texels, r * stride + i.saturating_sub(1));
-            prefetch(&self.texels, r * stride + i + 1);
-        }
         let q = bilinear::sample(f, &corners);
         let p = [(i as f32 + q[0]) / self.w_f, (j as f32 + q[1]) / self.nv_f];
         let mut mu = p[0] + self.half_texel;

@@ -39,7 +39,6 @@ mod path_state;
 mod plastic_table;
 mod portal;
 mod pplastic;
-mod prefetch;
 mod principled;
 mod principled_lobes;
 mod principled_thin;
