@@ -36,7 +36,8 @@ pub struct View {
 }
 
 /// A [`View`]'s unit axes, right (`r`), up (`u`) and forward (`f`), orthonormal, and the
-/// tangent of half its vertical field of view ([`View::basis`]).
+/// tangent of half its vertical field of view ([`View::basis`]). The view's ray and frustum
+/// methods take it so as not to redo that per ray: give them their own view's basis.
 #[derive(Clone, Copy, Debug)]
 pub struct Basis {
     pub r: Vec3A,
