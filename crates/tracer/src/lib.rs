@@ -32,6 +32,7 @@ mod light_bounds4;
 mod light_pick;
 mod light_pick4;
 mod light_tree;
+mod light_visibility;
 mod lights;
 mod material;
 mod microfacet;

@@ -12,8 +12,11 @@
 //! gets weight 0 only where its contribution is exactly 0: the receiver behind the light's
 //! emitting plane, the whole light below the receiver's tangent plane, or outside a spot's cone.
 //! So the estimator stays unbiased, and in a house of rooms each room's own light gets most of
-//! the shadow rays instead of an equal share with lights behind the walls. Visibility is not
-//! known, so a light in the next room still gets what its distance earns.
+//! the shadow rays instead of an equal share with lights behind the walls. Visibility comes
+//! from a grid built once per scene ([`crate::light_visibility`]): each unit's importance is
+//! multiplied by how much of it the point's cell sees, never by less than a floor, so a light
+//! in the next room keeps a little of what its distance earns and nothing can become
+//! unreachable.
 //!
 //! With more than [`SPATIAL_MAX_UNITS`] units the choice still depends on the receiving point,
 //! through a light tree ([`crate::light_tree`]) over the units that have a position: the cost
@@ -36,6 +39,7 @@ use crate::beam::Lookup;
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::light_pick4::{AreaUnit, AreaUnits4};
 use crate::light_tree::LightBounds;
+use crate::light_visibility::Visibility;
 use crate::portal::Portals;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -82,6 +86,8 @@ pub struct LightPicker {
     /// The openings the environment and the sun reach the interior through (none: they
     /// reach everywhere).
     portals: Portals,
+    /// With a spatial choice: which units each part of the scene sees (`light_visibility.rs`).
+    visibility: Option<Visibility>,
 }
 
 /// A point behind portals: the portals (which a sun's direction may cross) and the share of
@@ -223,7 +229,20 @@ impl LightPicker {
             area4: area4.unwrap_or_default(),
             tree,
             portals: Portals::default(),
+            visibility: None,
         }
+    }
+
+    /// Weighs each unit's importance by how much of it the shading point's part of the scene
+    /// sees (`light_visibility.rs`).
+    pub fn see_through(&mut self, visibility: Option<Visibility>) {
+        self.visibility = visibility;
+    }
+
+    /// Whether the choice weighs per-point importances of each unit (2 ..=
+    /// [`SPATIAL_MAX_UNITS`] units, no tree): what [`LightPicker::see_through`] acts on.
+    pub fn per_point_importances(&self) -> bool {
+        self.spatial && self.tree.is_none()
     }
 
     /// The environment and directional lights reach the interior only through `portals`:
@@ -329,6 +348,11 @@ impl LightPicker {
         let behind = self.behind(x);
         for (wk, b) in w[a..].iter_mut().zip(&self.bounds[a..]) {
             *wk = unit_importance(b, x, n, behind);
+        }
+        if let Some(f) = self.visibility.as_ref().and_then(|v| v.at(x)) {
+            for (wk, fk) in w.iter_mut().zip(f) {
+                *wk *= fk;
+            }
         }
         let mut total = 0.0;
         for &wk in &w[..self.units.len()] {

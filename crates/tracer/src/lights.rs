@@ -6,6 +6,7 @@ use crate::beam::{self, Lookup};
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::envmap::{EnvSample, Environment};
 use crate::light_pick::{LightPicker, Unit};
+use crate::light_visibility::Visibility;
 use crate::portal::{Portals, Through};
 use eyeadapt_scene::{Light, Portal, Texture};
 use glam::Vec3A;
@@ -98,6 +99,28 @@ impl LightSet {
         self
     }
 
+    /// The set with its light choice weighed by `visibility` (`light_visibility.rs`).
+    pub(crate) fn set_visibility(&mut self, visibility: Option<Visibility>) {
+        self.picker.see_through(visibility);
+    }
+
+    /// The light choice at `x` (normal `n`): a unit and its probability.
+    #[cfg(test)]
+    pub(crate) fn picker_pick(&self, x: Vec3A, n: Option<Vec3A>, u: f32) -> Option<(usize, f32)> {
+        self.picker.pick(x, n, u)
+    }
+
+    /// The probability that the light choice at `x` (normal `n`) takes unit `k`.
+    #[cfg(test)]
+    pub(crate) fn picker_prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
+        self.picker.prob(k, x, n)
+    }
+
+    /// Whether the light choice weighs per-point importances of each unit.
+    pub(crate) fn per_point_importances(&self) -> bool {
+        self.picker.per_point_importances()
+    }
+
     pub fn is_empty(&self) -> bool {
         self.picker.units.is_empty()
     }
@@ -174,6 +197,22 @@ impl LightSet {
         u: [f32; 2],
     ) -> Option<LightSample> {
         let (k, p) = self.picker.pick(x, n, u_pick)?;
+        self.sample_unit(k, p, x, u)
+    }
+
+    /// Number of units the light choice chooses among.
+    pub(crate) fn unit_count(&self) -> usize {
+        self.picker.units.len()
+    }
+
+    /// A point (or direction) of unit `k`, chosen with probability `p`, seen from `x`.
+    pub(crate) fn sample_unit(
+        &self,
+        k: usize,
+        p: f32,
+        x: Vec3A,
+        u: [f32; 2],
+    ) -> Option<LightSample> {
         match self.picker.units[k] {
             Unit::Area { first, quad } => {
                 let a = &self.area[first as usize];

@@ -30,4 +30,6 @@
 ///    bits (every scene, in the last bits).
 /// 8: an environment map draws points inside a cell in proportion to the bilinear luminance
 ///    (scenes with a map).
-pub const RENDER_REVISION: u32 = 8;
+/// 9: with 2 to 16 lights, the light choice weighs each light by how much of it the shading
+///    point's cell of the scene sees (`light_visibility.rs`; scenes with 2 to 16 lights).
+pub const RENDER_REVISION: u32 = 9;

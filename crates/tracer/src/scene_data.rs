@@ -2,6 +2,7 @@
 //! set. Built once per scene and shared read-only by every thread and frame.
 use crate::envmap::Environment;
 use crate::geometry::{Built, Geometry};
+use crate::light_visibility::Visibility;
 use crate::lights::LightSet;
 use crate::material::Materials;
 use eyeadapt_scene::{CutoutShadows, MaterialId, Scene};
@@ -48,7 +49,7 @@ impl SceneData {
         let parameterisation = materials.read_parameterisation();
         let cutouts_pass = scene.cutout_shadows == CutoutShadows::Transmit;
         let see_through = materials.has_see_through(cutouts_pass);
-        SceneData {
+        let mut data = SceneData {
             parameterisation,
             geometry,
             materials,
@@ -57,6 +58,9 @@ impl SceneData {
             see_through,
             center,
             radius,
-        }
+        };
+        let visibility = Visibility::build(&data);
+        data.lights.set_visibility(visibility);
+        data
     }
 }

@@ -1,0 +1,247 @@
+//! Which lights can be seen from where: a grid over the scene's bounds that holds, for each
+//! cell and each unit of the direct light choice ([`crate::light_pick`]), the share of shadow
+//! rays from points of the cell to points of the unit that arrive. The spatial light choice
+//! multiplies each unit's importance by [`FLOOR`] + (1 − [`FLOOR`]) × that share, so that in a
+//! house of rooms a shading point stops spending shadow rays on the light behind the wall,
+//! which its distance alone made important.
+//!
+//! **Unbiased by construction.** A factor is never 0, so every unit that could be chosen at a
+//! point still can, with the same probability in [`crate::lights::LightSet::sample`] and in the
+//! densities MIS asks for (both read the same factors); only the variance changes. A cell whose
+//! points see nothing (inside a wall) gives every unit [`FLOOR`], which leaves the choice as it
+//! was; a unit no point of a cell could sample (behind its one-sided emitter) keeps factor 1.
+//!
+//! **Deterministic.** The grid is built once per scene, before any frame, from points and light
+//! samples of the tracer's own Owen-scrambled Sobol stream keyed by the cell: the same scene
+//! gives the same factors on any number of threads.
+use crate::geometry::RayScratch;
+use crate::sampler::{SampleStream, hash_key};
+use crate::scene_data::SceneData;
+use crate::shadow::shadow_transmittance;
+use glam::Vec3A;
+use rayon::prelude::*;
+
+/// The smallest factor: the share of its importance a unit keeps in a cell that sees none of it.
+pub const FLOOR: f32 = 0.1;
+
+/// Points per cell.
+const POINTS: u32 = 16;
+
+/// Most cells along the scene's longest side.
+const MAX_CELLS_PER_SIDE: f32 = 48.0;
+
+/// Most shadow rays the build traces (points × units over all cells).
+const RAY_BUDGET: f32 = 400_000.0;
+
+/// The grid of per-cell factors.
+#[derive(Clone, Debug)]
+pub struct Visibility {
+    lo: Vec3A,
+    /// 1 / the cells' side.
+    inv_side: f32,
+    dims: [u32; 3],
+    units: usize,
+    /// `units` factors per cell, cells in x-fastest order.
+    factors: Vec<f32>,
+}
+
+impl Visibility {
+    /// The grid of `scene`'s light choice, or `None` where the choice does not depend on the
+    /// shading point through the per-point importances (one unit, or a light tree).
+    pub fn build(scene: &SceneData) -> Option<Visibility> {
+        let lights = &scene.lights;
+        let units = lights.unit_count();
+        if !lights.per_point_importances() || units < 2 {
+            return None;
+        }
+        let lo = scene.geometry.bounds_min;
+        let size = (scene.geometry.bounds_max - lo).max(Vec3A::splat(1e-6));
+        let (side, dims) = cells_for(size, RAY_BUDGET / (POINTS as f32 * units as f32));
+        let cells = dims.iter().map(|&d| d as usize).product::<usize>();
+        let factors: Vec<f32> = (0..cells)
+            .into_par_iter()
+            .map_init(
+                || scene.geometry.scratch(),
+                |scratch, c| cell_factors(scene, scratch, (lo, side, dims), c),
+            )
+            .flatten_iter()
+            .collect();
+        Some(Visibility {
+            lo,
+            inv_side: 1.0 / side,
+            dims,
+            units,
+            factors,
+        })
+    }
+
+    /// The factors of the cell holding `x` (none outside the grid).
+    #[inline]
+    pub fn at(&self, x: Vec3A) -> Option<&[f32]> {
+        let c = ((x - self.lo) * self.inv_side).floor();
+        if c.min_element() < 0.0 {
+            return None;
+        }
+        let [i, j, k] = c.to_array().map(|v| v as u32);
+        let [nx, ny, nz] = self.dims;
+        if i >= nx || j >= ny || k >= nz {
+            return None;
+        }
+        let cell = ((k * ny + j) * nx + i) as usize;
+        Some(&self.factors[cell * self.units..(cell + 1) * self.units])
+    }
+}
+
+/// The cells' side and the grid's size over a box of `size`: cubes, at most
+/// [`MAX_CELLS_PER_SIDE`] along the longest side and at most `max_cells` in all.
+fn cells_for(size: Vec3A, max_cells: f32) -> (f32, [u32; 3]) {
+    let mut side = size.max_element() / MAX_CELLS_PER_SIDE;
+    loop {
+        let dims = (size / side).ceil().max(Vec3A::ONE);
+        let cells = dims.x * dims.y * dims.z;
+        if cells <= max_cells.max(1.0) {
+            return (side, dims.to_array().map(|d| d as u32));
+        }
+        side *= libm::cbrtf(cells / max_cells).max(1.01);
+    }
+}
+
+/// Cell `c`'s factors: [`POINTS`] points of the cell, a shadow ray from each to each unit.
+fn cell_factors(
+    scene: &SceneData,
+    scratch: &mut RayScratch,
+    (lo, side, dims): (Vec3A, f32, [u32; 3]),
+    c: usize,
+) -> Vec<f32> {
+    let lights = &scene.lights;
+    let units = lights.unit_count();
+    let (nx, ny) = (dims[0] as usize, dims[1] as usize);
+    let corner = lo
+        + Vec3A::new(
+            (c % nx) as f32,
+            (c / nx % ny) as f32,
+            (c / (nx * ny)) as f32,
+        ) * side;
+    let key = hash_key(&[0x7669_7369_6269_6c74, c as u64]);
+    let (mut tried, mut free) = (vec![0u32; units], vec![0u32; units]);
+    for i in 0..POINTS {
+        let mut s = SampleStream::new(key, i);
+        let [a, b, d, _] = s.next_4d();
+        let x = corner + Vec3A::new(a, b, d) * side;
+        for k in 0..units {
+            let Some(ls) = lights.sample_unit(k, 1.0, x, s.next_2d()) else {
+                continue;
+            };
+            if ls.li.max_element() <= 0.0 {
+                continue;
+            }
+            tried[k] += 1;
+            let tr = shadow_transmittance(scene, scratch, x, ls.wi, ls.dist);
+            free[k] += (tr.max_element() > 0.0) as u32;
+        }
+    }
+    tried
+        .iter()
+        .zip(&free)
+        .map(|(&t, &f)| {
+            if t == 0 {
+                1.0
+            } else {
+                FLOOR + (1.0 - FLOOR) * f as f32 / t as f32
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn three_rooms() -> SceneData {
+        SceneData::new(&eyeadapt_scene::load_builtin("three-rooms").unwrap())
+    }
+
+    /// Unit `k`'s colour as seen from `x` (which of the three rooms' lights it is).
+    fn is_white(scene: &SceneData, k: usize, x: Vec3A) -> bool {
+        let li = (0..16u32)
+            .filter_map(|i| {
+                scene
+                    .lights
+                    .sample_unit(k, 1.0, x, [0.3 + i as f32 / 40.0, 0.5])
+            })
+            .map(|ls| ls.li)
+            .next()
+            .unwrap();
+        (li.x - li.z).abs() < 1e-3 * li.max_element()
+    }
+
+    #[test]
+    fn a_room_sees_its_own_light_and_not_the_lights_behind_its_walls() {
+        let scene = three_rooms();
+        let vis = Visibility::build(&scene).expect("three lights: a spatial choice");
+        assert_eq!(vis.units, 3);
+        // Room 1 beside its partition wall (z = -5), out of the doorway's sight lines (|x| <
+        // 0.6): only its white light is seen.
+        let x = Vec3A::new(-1.7, 1.0, -4.6);
+        let f = vis.at(x).unwrap();
+        for (k, &fk) in f.iter().enumerate() {
+            assert!((FLOOR..=1.0).contains(&fk), "factor {fk}");
+            if is_white(&scene, k, x) {
+                assert!(fk > 0.9, "room 1's own light: {fk}");
+            } else {
+                assert!(fk < 0.2, "a light behind room 1's walls: {fk}");
+            }
+        }
+        assert_eq!(f.iter().filter(|&&fk| fk > 0.9).count(), 1);
+        // Outside the scene's bounds there is nothing to say.
+        assert!(vis.at(Vec3A::new(0.0, 50.0, 0.0)).is_none());
+        assert!(vis.at(Vec3A::new(0.0, -50.0, 0.0)).is_none());
+        // Every factor lies in [FLOOR, 1], and some cells see no light at all (in the walls).
+        assert!(vis.factors.iter().all(|f| (FLOOR..=1.0).contains(f)));
+        assert!(vis.factors.chunks(3).any(|c| c.iter().all(|&f| f == FLOOR)));
+    }
+
+    #[test]
+    fn the_grid_is_the_same_on_any_number_of_threads() {
+        let scene = three_rooms();
+        let on = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| Visibility::build(&scene).unwrap())
+        };
+        let (one, three) = (on(1), on(3));
+        assert_eq!(one.dims, three.dims);
+        let bits = |v: &Visibility| v.factors.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&one), bits(&three));
+    }
+
+    #[test]
+    fn the_choice_follows_the_factors_and_its_probabilities_stay_exact() {
+        let scene = three_rooms();
+        let lights = &scene.lights;
+        // Near the doorway of room 1, where the orange light is partly seen.
+        for x in [Vec3A::new(0.2, 1.0, -4.6), Vec3A::new(-1.2, 1.2, -2.0)] {
+            let n = Some(Vec3A::Y);
+            let probs: Vec<f32> = (0..3).map(|k| lights.picker_prob(k, x, n)).collect();
+            assert!((probs.iter().sum::<f32>() - 1.0).abs() < 1e-5, "{probs:?}");
+            let mut counts = [0u32; 3];
+            let m = 20_000;
+            for i in 0..m {
+                let u = (i as f32 + 0.5) / m as f32;
+                let (k, p) = lights.picker_pick(x, n, u).unwrap();
+                assert_eq!(p.to_bits(), probs[k].to_bits());
+                counts[k] += 1;
+            }
+            for k in 0..3 {
+                let share = counts[k] as f32 / m as f32;
+                assert!(
+                    (share - probs[k]).abs() < 1e-3,
+                    "{share} against {}",
+                    probs[k]
+                );
+            }
+        }
+    }
+}
