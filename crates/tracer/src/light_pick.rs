@@ -48,6 +48,10 @@ use tree::Tree;
 /// Most units for which the choice depends on the shading point.
 pub const SPATIAL_MAX_UNITS: usize = 16;
 
+/// Most units the choice weighs by a visibility grid (`light_visibility.rs`): its build traces
+/// a shadow ray to every unit from every point, so more units leave it fewer, larger cells.
+pub const VISIBILITY_MAX_UNITS: usize = 64;
+
 /// The factor of a directional light's importance at a point the portals serve when its
 /// direction crosses none of them.
 pub const BEHIND_PORTALS: f32 = 1.0 / 16.0;
@@ -88,6 +92,17 @@ pub struct LightPicker {
     portals: Portals,
     /// With a spatial choice: which units each part of the scene sees (`light_visibility.rs`).
     visibility: Option<Visibility>,
+    /// With a tree and a visibility grid: per cell, [`Tree::seen_factors`], `tree_stride` each.
+    tree_seen: Vec<f32>,
+    tree_stride: usize,
+}
+
+/// What the visibility grid says at a point: each unit's factor and, with a tree, the
+/// factors of its root and lanes ([`Tree::seen_factors`]).
+#[derive(Clone, Copy)]
+struct Seen<'a> {
+    units: &'a [f32],
+    tree: &'a [f32],
 }
 
 /// A point behind portals: the portals (which a sun's direction may cross) and the share of
@@ -230,19 +245,42 @@ impl LightPicker {
             tree,
             portals: Portals::default(),
             visibility: None,
+            tree_seen: Vec::new(),
+            tree_stride: 0,
         }
     }
 
     /// Weighs each unit's importance by how much of it the shading point's part of the scene
     /// sees (`light_visibility.rs`).
     pub fn see_through(&mut self, visibility: Option<Visibility>) {
+        (self.tree_seen, self.tree_stride) = match (&self.tree, &visibility) {
+            (Some(t), Some(v)) => {
+                let per_cell: Vec<Vec<f32>> = (0..v.cells())
+                    .map(|c| t.seen_factors(v.of_cell(c)))
+                    .collect();
+                let stride = per_cell.first().map_or(0, Vec::len);
+                (per_cell.concat(), stride)
+            }
+            _ => (Vec::new(), 0),
+        };
         self.visibility = visibility;
     }
 
-    /// Whether the choice weighs per-point importances of each unit (2 ..=
-    /// [`SPATIAL_MAX_UNITS`] units, no tree): what [`LightPicker::see_through`] acts on.
-    pub fn per_point_importances(&self) -> bool {
-        self.spatial && self.tree.is_none()
+    /// Whether the choice depends on the shading point and has at most
+    /// [`VISIBILITY_MAX_UNITS`] units: what [`LightPicker::see_through`] acts on.
+    pub fn takes_visibility(&self) -> bool {
+        self.is_spatial() && self.units.len() <= VISIBILITY_MAX_UNITS
+    }
+
+    /// What the visibility grid says at `x`, with a tree.
+    #[inline]
+    fn seen_by_tree(&self, x: Vec3A) -> Option<Seen<'_>> {
+        let v = self.visibility.as_ref()?;
+        let c = v.cell(x)?;
+        Some(Seen {
+            units: v.of_cell(c),
+            tree: &self.tree_seen[c * self.tree_stride..(c + 1) * self.tree_stride],
+        })
     }
 
     /// The environment and directional lights reach the interior only through `portals`:
@@ -294,7 +332,12 @@ impl LightPicker {
             return None;
         }
         if let Some(t) = &self.tree {
-            return t.pick(&self.bounds, (x, n, self.behind(x)), u);
+            return t.pick(
+                &self.bounds,
+                (x, n, self.behind(x)),
+                u,
+                self.seen_by_tree(x),
+            );
         }
         if !self.spatial {
             let target = u as f64 * self.total;
@@ -329,7 +372,12 @@ impl LightPicker {
     #[inline]
     pub fn prob(&self, k: usize, x: Vec3A, n: Option<Vec3A>) -> f32 {
         if let Some(t) = &self.tree {
-            return t.prob(&self.bounds, k, (x, n, self.behind(x)));
+            return t.prob(
+                &self.bounds,
+                k,
+                (x, n, self.behind(x)),
+                self.seen_by_tree(x),
+            );
         }
         if !self.spatial {
             return self.power_prob(k) as f32;

@@ -2,7 +2,7 @@
 //! [`SPATIAL_MAX_UNITS`](super::SPATIAL_MAX_UNITS) units: the choice among the units that have
 //! a position goes down a [`LightTree`], and the units without one (directional lights, the
 //! environment) compete with its root.
-use super::{Behind, Bounds, importance, light_bounds, tree_leaf, unit_importance};
+use super::{Behind, Bounds, Seen, importance, light_bounds, tree_leaf, unit_importance};
 use crate::light_tree::LightTree;
 use glam::Vec3A;
 
@@ -51,18 +51,31 @@ impl Tree {
         &self,
         bounds: &[Bounds],
         (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+        seen: Option<Seen>,
     ) -> (f32, f32) {
         let root = if self.unit.len() == 1 {
             importance(&bounds[self.unit[0] as usize], x, n)
         } else {
             self.tree.root_importance(x, n)
-        };
+        } * seen.map_or(1.0, |s| s.tree[0]);
         let rest: f32 = self
             .unbounded
             .iter()
-            .map(|&k| unit_importance(&bounds[k as usize], x, n, behind))
+            .map(|&k| unbounded_importance(bounds, k as usize, (x, n, behind), seen))
             .sum();
         (root, root + rest)
+    }
+
+    /// Per cell of a visibility grid: the root's factor (the largest of the tree's units'),
+    /// then the tree's lane factors ([`LightTree::lane_factors`]), from the cell's unit
+    /// factors `units`.
+    pub(super) fn seen_factors(&self, units: &[f32]) -> Vec<f32> {
+        let lanes = self.tree.lane_factors(|i| units[self.unit[i] as usize]);
+        let root = self
+            .unit
+            .iter()
+            .fold(0.0f32, |a, &k| a.max(units[k as usize]));
+        std::iter::once(root).chain(lanes).collect()
     }
 
     pub(super) fn pick(
@@ -70,28 +83,30 @@ impl Tree {
         bounds: &[Bounds],
         (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
         u: f32,
+        seen: Option<Seen>,
     ) -> Option<(usize, f32)> {
         let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        let lanes = seen.map(|s| &s.tree[1..]);
         if self.unbounded.is_empty() {
             // Nothing competes with the root: the walk alone chooses (and finds no light where
             // the root's children reach none).
-            let (i, p) = self.tree.pick(x, n, u, leaf)?;
+            let (i, p) = self.tree.pick(x, n, u, leaf, lanes)?;
             return Some((self.unit[i] as usize, p));
         }
-        let (root, total) = self.top(bounds, (x, n, behind));
+        let (root, total) = self.top(bounds, (x, n, behind), seen);
         if total.is_nan() || total <= 0.0 {
             return None;
         }
         let target = u * total;
         if target < root {
             let v = (target / root).min(1.0 - f32::EPSILON / 2.0);
-            let (i, p) = self.tree.pick(x, n, v, leaf)?;
+            let (i, p) = self.tree.pick(x, n, v, leaf, lanes)?;
             return Some((self.unit[i] as usize, root / total * p));
         }
         let mut acc = root;
         let mut last = None;
         for &k in &self.unbounded {
-            let w = unit_importance(&bounds[k as usize], x, n, behind);
+            let w = unbounded_importance(bounds, k as usize, (x, n, behind), seen);
             if w > 0.0 {
                 acc += w;
                 last = Some((k as usize, w / total));
@@ -102,7 +117,9 @@ impl Tree {
         }
         // Rounding may leave `target` at the running sum: the last unit that can contribute.
         last.or_else(|| {
-            let (i, p) = self.tree.pick(x, n, 1.0 - f32::EPSILON / 2.0, leaf)?;
+            let (i, p) = self
+                .tree
+                .pick(x, n, 1.0 - f32::EPSILON / 2.0, leaf, lanes)?;
             Some((self.unit[i] as usize, root / total * p))
         })
     }
@@ -112,18 +129,31 @@ impl Tree {
         bounds: &[Bounds],
         k: usize,
         (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+        seen: Option<Seen>,
     ) -> f32 {
         let leaf = |i: usize, w: f32| tree_leaf(&self.leaf_bounds[i], x, n, w);
+        let lanes = seen.map(|s| &s.tree[1..]);
         if self.unbounded.is_empty() {
-            return self.tree.prob(self.leaf[k] as usize, x, n, leaf);
+            return self.tree.prob(self.leaf[k] as usize, x, n, leaf, lanes);
         }
-        let (root, total) = self.top(bounds, (x, n, behind));
+        let (root, total) = self.top(bounds, (x, n, behind), seen);
         if total.is_nan() || total <= 0.0 {
             return 0.0;
         }
         match self.leaf[k] {
-            u32::MAX => unit_importance(&bounds[k], x, n, behind) / total,
-            i => root / total * self.tree.prob(i as usize, x, n, leaf),
+            u32::MAX => unbounded_importance(bounds, k, (x, n, behind), seen) / total,
+            i => root / total * self.tree.prob(i as usize, x, n, leaf, lanes),
         }
     }
+}
+
+/// The importance of unit `k`, one without a position, times its visibility factor.
+#[inline]
+fn unbounded_importance(
+    bounds: &[Bounds],
+    k: usize,
+    (x, n, behind): (Vec3A, Option<Vec3A>, Option<Behind>),
+    seen: Option<Seen>,
+) -> f32 {
+    unit_importance(&bounds[k], x, n, behind) * seen.map_or(1.0, |s| s.units[k])
 }

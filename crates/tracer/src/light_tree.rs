@@ -120,14 +120,26 @@ struct Node {
 impl Node {
     /// The children's importances at (`x`, `n`): a leaf's is `leaf(light, its bound)`; 0
     /// past the last child (lanes without a node have no power).
+    /// Each is then multiplied by its lane's factor in `f` (the node's four, if any).
     #[inline]
-    fn weights(&self, x: Vec3A, n: Option<Vec3A>, leaf: &impl Fn(usize, f32) -> f32) -> [f32; 4] {
+    fn weights(
+        &self,
+        x: Vec3A,
+        n: Option<Vec3A>,
+        leaf: &impl Fn(usize, f32) -> f32,
+        f: Option<&[f32]>,
+    ) -> [f32; 4] {
         let mut w = self.bounds.importance(x, n);
         let mut leaves = self.leaves;
         while leaves != 0 {
             let j = leaves.trailing_zeros() as usize;
             leaves &= leaves - 1;
             w[j] = leaf((self.child[j] & !LEAF) as usize, w[j]);
+        }
+        if let Some(f) = f {
+            for (wj, fj) in w.iter_mut().zip(f) {
+                *wj *= fj;
+            }
         }
         w
     }
@@ -217,6 +229,28 @@ impl LightTree {
         at
     }
 
+    /// Per node, four lane factors from per-light factors `light`: a leaf lane's is its
+    /// light's, an inner lane's the largest of its subtree's (a node's lanes at `4 × node`;
+    /// lanes without a child 0). With them, [`LightTree::pick`] weighs a subtree by the most
+    /// any of its lights keeps, so no light's chance falls below its own factor's share.
+    pub fn lane_factors(&self, light: impl Fn(usize) -> f32) -> Vec<f32> {
+        let mut f = vec![0.0f32; 4 * self.nodes.len()];
+        // Children come after their parent (`collapse`): from the last node back, a child's
+        // lanes are done before its parent reads them.
+        for (i, node) in self.nodes.iter().enumerate().rev() {
+            for (j, &c) in node.child.iter().enumerate() {
+                f[4 * i + j] = match c {
+                    u32::MAX => 0.0,
+                    c if c & LEAF != 0 => light((c & !LEAF) as usize),
+                    c => f[4 * c as usize..4 * c as usize + 4]
+                        .iter()
+                        .fold(0.0, |a: f32, &b| a.max(b)),
+                };
+            }
+        }
+        f
+    }
+
     /// The root's importance at (`x`, `n`) (all the lights' bounds together).
     pub fn root_importance(&self, x: Vec3A, n: Option<Vec3A>) -> f32 {
         self.top.importance(x, n)[0]
@@ -224,18 +258,21 @@ impl LightTree {
 
     /// Walks from the root choosing children with `u` (in [0, 1), rescaled at each step):
     /// the chosen light and the probability of that walk, or `None` where no light reaches.
+    /// With `lanes` ([`LightTree::lane_factors`]) each child's weight is multiplied by its
+    /// lane's factor.
     pub fn pick(
         &self,
         x: Vec3A,
         n: Option<Vec3A>,
         mut u: f32,
         leaf: impl Fn(usize, f32) -> f32,
+        lanes: Option<&[f32]>,
     ) -> Option<(usize, f32)> {
         let mut i = 0usize;
         let mut p = 1.0f32;
         loop {
             let node = &self.nodes[i];
-            let w = node.weights(x, n, &leaf);
+            let w = node.weights(x, n, &leaf, lanes.map(|f| &f[4 * i..4 * i + 4]));
             let total = sum(&w);
             if total.is_nan() || total <= 0.0 {
                 return None;
@@ -270,13 +307,14 @@ impl LightTree {
         x: Vec3A,
         n: Option<Vec3A>,
         leaf: impl Fn(usize, f32) -> f32,
+        lanes: Option<&[f32]>,
     ) -> f32 {
         let (trail, depth) = self.trails[k];
         let mut i = 0usize;
         let mut p = 1.0f32;
         for step in 0..depth as usize {
             let node = &self.nodes[i];
-            let w = node.weights(x, n, &leaf);
+            let w = node.weights(x, n, &leaf, lanes.map(|f| &f[4 * i..4 * i + 4]));
             let total = sum(&w);
             let lane = (trail >> (2 * step) & 3) as usize;
             if total.is_nan() || total <= 0.0 || w[lane] <= 0.0 {

@@ -74,7 +74,7 @@ fn pick_sends_each_light_its_probability_of_the_sample_numbers() {
         let tree = LightTree::build(&lights).unwrap();
         let x = Vec3A::new(0.3, -0.2, 0.1);
         let probs: Vec<f32> = (0..count)
-            .map(|k| tree.prob(k, x, None, exact(&lights, x)))
+            .map(|k| tree.prob(k, x, None, exact(&lights, x), None))
             .collect();
         // Every point light reaches x, so the walk never loses a choice.
         let sum: f32 = probs.iter().sum();
@@ -85,7 +85,7 @@ fn pick_sends_each_light_its_probability_of_the_sample_numbers() {
         let mut hits = vec![0u32; count];
         for s in 0..strata {
             let u = (s as f32 + 0.5) / strata as f32;
-            let (k, p) = tree.pick(x, None, u, exact(&lights, x)).unwrap();
+            let (k, p) = tree.pick(x, None, u, exact(&lights, x), None).unwrap();
             assert_eq!(p, probs[k], "{count}: pick and prob differ for light {k}");
             hits[k] += 1;
         }
@@ -111,7 +111,7 @@ fn a_light_that_cannot_reach_is_never_chosen() {
     let leaf = |k: usize, bound: f32| {
         if k.is_multiple_of(2) { 0.0 } else { bound }
     };
-    let probs: Vec<f32> = (0..27).map(|k| tree.prob(k, x, None, leaf)).collect();
+    let probs: Vec<f32> = (0..27).map(|k| tree.prob(k, x, None, leaf, None)).collect();
     for (k, &p) in probs.iter().enumerate() {
         assert_eq!(p > 0.0, k % 2 == 1, "light {k}: {p}");
     }
@@ -120,7 +120,7 @@ fn a_light_that_cannot_reach_is_never_chosen() {
     let strata = 4096;
     let mut none = 0;
     for s in 0..strata {
-        match tree.pick(x, None, (s as f32 + 0.5) / strata as f32, leaf) {
+        match tree.pick(x, None, (s as f32 + 0.5) / strata as f32, leaf, None) {
             Some((k, p)) => assert!(k % 2 == 1 && p == probs[k], "u {s}/{strata} chose {k}"),
             None => none += 1,
         }
@@ -131,6 +131,6 @@ fn a_light_that_cannot_reach_is_never_chosen() {
         "{share} of walks lost, expected {lost}"
     );
     // No light reaches: no choice at all.
-    assert!(tree.pick(x, None, 0.5, |_, _| 0.0).is_none());
-    assert_eq!(tree.prob(3, x, None, |_, _| 0.0), 0.0);
+    assert!(tree.pick(x, None, 0.5, |_, _| 0.0, None).is_none());
+    assert_eq!(tree.prob(3, x, None, |_, _| 0.0, None), 0.0);
 }

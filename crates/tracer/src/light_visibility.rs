@@ -3,7 +3,9 @@
 //! rays from points of the cell to points of the unit that arrive. The spatial light choice
 //! multiplies each unit's importance by [`FLOOR`] + (1 − [`FLOOR`]) × that share, so that in a
 //! house of rooms a shading point stops spending shadow rays on the light behind the wall,
-//! which its distance alone made important.
+//! which its distance alone made important. With a light tree (17 to
+//! [`crate::light_pick::VISIBILITY_MAX_UNITS`] units) each subtree is weighed by the largest
+//! factor of its lights, and each light at the leaves by its own.
 //!
 //! **Unbiased by construction.** A factor is never 0, so every unit that could be chosen at a
 //! point still can, with the same probability in [`crate::lights::LightSet::sample`] and in the
@@ -47,11 +49,11 @@ pub struct Visibility {
 
 impl Visibility {
     /// The grid of `scene`'s light choice, or `None` where the choice does not depend on the
-    /// shading point through the per-point importances (one unit, or a light tree).
+    /// shading point or has too many units for a grid ([`crate::light_pick`]).
     pub fn build(scene: &SceneData) -> Option<Visibility> {
         let lights = &scene.lights;
         let units = lights.unit_count();
-        if !lights.per_point_importances() || units < 2 {
+        if !lights.takes_visibility() {
             return None;
         }
         let lo = scene.geometry.bounds_min;
@@ -78,6 +80,23 @@ impl Visibility {
     /// The factors of the cell holding `x` (none outside the grid).
     #[inline]
     pub fn at(&self, x: Vec3A) -> Option<&[f32]> {
+        self.cell(x).map(|c| self.of_cell(c))
+    }
+
+    /// The factors of cell `c`, one per unit.
+    #[inline]
+    pub fn of_cell(&self, c: usize) -> &[f32] {
+        &self.factors[c * self.units..(c + 1) * self.units]
+    }
+
+    /// Number of cells.
+    pub fn cells(&self) -> usize {
+        self.factors.len() / self.units
+    }
+
+    /// The cell holding `x` (none outside the grid).
+    #[inline]
+    pub fn cell(&self, x: Vec3A) -> Option<usize> {
         let c = ((x - self.lo) * self.inv_side).floor();
         if c.min_element() < 0.0 {
             return None;
@@ -87,8 +106,7 @@ impl Visibility {
         if i >= nx || j >= ny || k >= nz {
             return None;
         }
-        let cell = ((k * ny + j) * nx + i) as usize;
-        Some(&self.factors[cell * self.units..(cell + 1) * self.units])
+        Some(((k * ny + j) * nx + i) as usize)
     }
 }
 
@@ -199,6 +217,50 @@ mod tests {
         // Every factor lies in [FLOOR, 1], and some cells see no light at all (in the walls).
         assert!(vis.factors.iter().all(|f| (FLOOR..=1.0).contains(f)));
         assert!(vis.factors.chunks(3).any(|c| c.iter().all(|&f| f == FLOOR)));
+    }
+
+    #[test]
+    fn with_a_light_tree_the_lights_behind_the_walls_lose_their_share() {
+        // Three rooms with 18 point lights more in room 3: 21 units, so a light tree.
+        let mut s = eyeadapt_scene::load_builtin("three-rooms").unwrap();
+        for k in 0..18 {
+            s.lights.push(eyeadapt_scene::Light::Point {
+                position: glam::Vec3::new(-1.5 + 0.18 * k as f32, 2.5, -12.5),
+                intensity: eyeadapt_scene::Rgb::splat(1.0),
+            });
+        }
+        let mut scene = SceneData::new(&s);
+        assert_eq!(scene.lights.unit_count(), 21);
+        let x = Vec3A::new(-1.7, 1.0, -4.6);
+        let n = Some(Vec3A::Y);
+        let room3 = |lights: &crate::lights::LightSet| -> f32 {
+            (3..21).map(|k| lights.picker_prob(k, x, n)).sum()
+        };
+        let (with, total) = (
+            room3(&scene.lights),
+            (0..21)
+                .map(|k| scene.lights.picker_prob(k, x, n))
+                .sum::<f32>(),
+        );
+        assert!((total - 1.0).abs() < 1e-5, "{total}");
+        // Frequencies of the choice follow its probabilities.
+        let m = 20_000;
+        let mut hits = 0;
+        for i in 0..m {
+            let (k, p) = scene
+                .lights
+                .picker_pick(x, n, (i as f32 + 0.5) / m as f32)
+                .unwrap();
+            assert_eq!(p.to_bits(), scene.lights.picker_prob(k, x, n).to_bits());
+            hits += (k >= 3) as u32;
+        }
+        assert!((hits as f32 / m as f32 - with).abs() < 2e-3);
+        scene.lights.set_visibility(None);
+        let without = room3(&scene.lights);
+        assert!(
+            with < 0.5 * without,
+            "room 3's share: {with} with the grid, {without} without"
+        );
     }
 
     #[test]

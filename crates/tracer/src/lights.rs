@@ -116,9 +116,9 @@ impl LightSet {
         self.picker.prob(k, x, n)
     }
 
-    /// Whether the light choice weighs per-point importances of each unit.
-    pub(crate) fn per_point_importances(&self) -> bool {
-        self.picker.per_point_importances()
+    /// Whether the light choice takes a visibility grid.
+    pub(crate) fn takes_visibility(&self) -> bool {
+        self.picker.takes_visibility()
     }
 
     pub fn is_empty(&self) -> bool {

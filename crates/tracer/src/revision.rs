@@ -32,4 +32,5 @@
 ///    (scenes with a map).
 /// 9: with 2 to 16 lights, the light choice weighs each light by how much of it the shading
 ///    point's cell of the scene sees (`light_visibility.rs`; scenes with 2 to 16 lights).
-pub const RENDER_REVISION: u32 = 9;
+/// 10: so does the light tree, for 17 to 64 lights.
+pub const RENDER_REVISION: u32 = 10;

@@ -8,7 +8,7 @@
 //! The cases cover the renderer's distinct paths: two built-in TOML scenes with textures,
 //! glass panes, an environment map, sun, points and spots (box and splatting filter), the
 //! Cornell box, a Mitsuba XML scene (rough plastic, smooth glass, a spot), more lights than the
-//! direct choice handles (the light tree), and the eye sensor.
+//! direct choice handles (the light tree, in open space and behind walls), and the eye sensor.
 mod common;
 
 use common::{builtin_view, frame_hash, settings};
@@ -20,7 +20,7 @@ use glam::Vec3;
 use std::path::Path;
 
 /// The revision these pins belong to.
-const PINNED_REVISION: u32 = 9;
+const PINNED_REVISION: u32 = 10;
 
 /// A floor lit by 20 point lights of different colours (more than 16: the light tree).
 fn many_points() -> (SceneData, View) {
@@ -44,6 +44,22 @@ fn many_points() -> (SceneData, View) {
         height: 14,
         projection: Default::default(),
     };
+    (SceneData::new(&s), view)
+}
+
+/// Three rooms with 18 point lights more in room 3 (a light tree whose lights the walls hide
+/// from most of the scene: the tree weighed by visibility).
+fn rooms_and_tree() -> (SceneData, View) {
+    let mut s = eyeadapt_scene::load_builtin("three-rooms").unwrap();
+    for k in 0..18 {
+        s.lights.push(Light::Point {
+            position: Vec3::new(-1.5 + 0.18 * k as f32, 2.5, -12.5),
+            intensity: Rgb::splat(1.0),
+        });
+    }
+    let mut view = View::from_camera(s.camera.as_ref().unwrap());
+    view.width = 24;
+    view.height = 14;
     (SceneData::new(&s), view)
 }
 
@@ -90,6 +106,11 @@ fn hashes() -> Vec<(&'static str, u64)> {
         "20 point lights",
         lit_hash(&render(&data, &view, &settings(8, 3, 8))),
     ));
+    let (data, view) = rooms_and_tree();
+    out.push((
+        "three-rooms, 21 lights",
+        lit_hash(&render(&data, &view, &settings(8, 3, 8))),
+    ));
     let (data, view) = builtin_view("three-rooms", 24, 14);
     let eye = EyeSettings {
         samples: 1024,
@@ -111,13 +132,14 @@ fn hashes() -> Vec<(&'static str, u64)> {
 
 #[test]
 fn the_render_revision_pins_the_bits_of_every_path_through_the_renderer() {
-    let expected: [(&str, u64); 7] = [
+    let expected: [(&str, u64); 8] = [
         ("interior", 0x7cd3e6eb73b8a3f4),
         ("three-rooms", 0xd341b6c3e661a171),
         ("cornell-box", 0x20ab6142b8168675),
         ("interior, tent filter", 0x7f960d64824ee1b5),
         ("glass-on-table.xml", 0xc9a5a1c90c076267),
         ("20 point lights", 0x48aae5d2f8487f6f),
+        ("three-rooms, 21 lights", 0xb4d2ed0c774690c1),
         ("eye sensor, three-rooms", 0x916c24b278f36fb7),
     ];
     let got = hashes();
