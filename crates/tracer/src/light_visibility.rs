@@ -57,7 +57,11 @@ impl Visibility {
             return None;
         }
         let lo = scene.geometry.bounds_min;
-        let size = (scene.geometry.bounds_max - lo).max(Vec3A::splat(1e-6));
+        let size = scene.geometry.bounds_max - lo;
+        if !(lo.is_finite() && size.is_finite() && size.max_element() > 0.0) {
+            return None; // no geometry: nothing to hide a light
+        }
+        let size = size.max(Vec3A::splat(size.max_element() * 1e-6));
         let (side, dims) = cells_for(size, RAY_BUDGET / (POINTS as f32 * units as f32));
         let cells = dims.iter().map(|&d| d as usize).product::<usize>();
         let factors: Vec<f32> = (0..cells)
@@ -261,6 +265,24 @@ mod tests {
             with < 0.5 * without,
             "room 3's share: {with} with the grid, {without} without"
         );
+    }
+
+    #[test]
+    fn a_scene_without_geometry_or_with_one_light_has_no_grid() {
+        let mut s = eyeadapt_scene::Scene {
+            environment: Some(eyeadapt_scene::Rgb::splat(0.5)),
+            ..Default::default()
+        };
+        s.lights.push(eyeadapt_scene::Light::Directional {
+            direction: glam::Vec3::new(0.2, -1.0, 0.1),
+            irradiance: eyeadapt_scene::Rgb::splat(3.0),
+        });
+        let scene = SceneData::new(&s);
+        assert_eq!(scene.lights.unit_count(), 2);
+        assert!(Visibility::build(&scene).is_none());
+        let cornell = SceneData::new(&eyeadapt_scene::load_builtin("cornell-box").unwrap());
+        assert_eq!(cornell.lights.unit_count(), 1);
+        assert!(Visibility::build(&cornell).is_none());
     }
 
     #[test]
