@@ -27,7 +27,7 @@ use rayon::prelude::*;
 pub const FLOOR: f32 = 0.1;
 
 /// Points per cell.
-const POINTS: u32 = 16;
+const POINTS: u32 = 8;
 
 /// Most cells along the scene's longest side.
 const MAX_CELLS_PER_SIDE: f32 = 48.0;

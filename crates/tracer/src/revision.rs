@@ -33,4 +33,6 @@
 /// 9: with 2 to 16 lights, the light choice weighs each light by how much of it the shading
 ///    point's cell of the scene sees (`light_visibility.rs`; scenes with 2 to 16 lights).
 /// 10: so does the light tree, for 17 to 64 lights.
-pub const RENDER_REVISION: u32 = 10;
+/// 11: the visibility grid shoots from 8 points a cell instead of 16 (the same error, half the
+///    build).
+pub const RENDER_REVISION: u32 = 11;
