@@ -17,6 +17,7 @@ use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
+use rayon::prelude::*;
 use std::time::Duration;
 
 /// One instance as the tracer shades it.
@@ -391,11 +392,13 @@ fn flat_levels(scene: &Scene) -> (Levels, Vec<Attributes>) {
     (Levels::Flat(Accel::build(&tris)), attributes)
 }
 
-/// One object-space structure per mesh, and the top level over the instances.
+/// One object-space structure per mesh, and the top level over the instances. The meshes'
+/// structures are built side by side (each build is the same on any thread count, and
+/// `collect` keeps the meshes' order, so the scene's bits do not depend on it).
 fn two_levels(scene: &Scene) -> (Levels, Vec<Attributes>) {
     let meshes: Vec<Accel> = scene
         .meshes
-        .iter()
+        .par_iter()
         .map(|mesh| {
             let tris: Vec<InputTri> = mesh
                 .indices

@@ -169,3 +169,54 @@ fn a_thousand_instances_cost_little_more_than_one() {
     );
     assert!(thousand < two + two / 10, "{thousand} bytes vs {two}");
 }
+
+#[test]
+fn meshes_built_side_by_side_give_the_same_bits_on_any_thread_count() {
+    // Several meshes of different sizes, each placed twice: a two-level scene whose meshes'
+    // structures are built in parallel.
+    let build_and_render = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let mut s = scene(true);
+                for (k, n) in [20_000, 5_000, 12_000].into_iter().enumerate() {
+                    let id = s.add_mesh(grid(n));
+                    for j in 0..2 {
+                        let t = Transform {
+                            matrix: Mat4::from_scale_rotation_translation(
+                                Vec3::splat(0.3),
+                                Quat::from_rotation_y(0.4 * j as f32),
+                                Vec3::new(-0.8 + 0.6 * k as f32, 0.05, -0.6 + 1.2 * j as f32),
+                            ),
+                        };
+                        s.add_instance(id, None, t);
+                    }
+                }
+                let data = SceneData::new(&s);
+                assert!(data.geometry.is_two_level());
+                let mut view = View::from_camera(s.camera.as_ref().unwrap());
+                (view.width, view.height) = (24, 16);
+                let settings = RenderSettings {
+                    spp: 4,
+                    path: PathSettings::default(),
+                    seed: 3,
+                    frame: 0,
+                    filter: eyeadapt_scene::PixelFilter::Box,
+                    wcam_specular: Default::default(),
+                    guiding: Default::default(),
+                };
+                render(&data, &view, &settings)
+            })
+    };
+    let (one, three) = (build_and_render(1), build_and_render(3));
+    let bits = |f: &eyeadapt_tracer::Frame| {
+        f.rgb
+            .iter()
+            .flat_map(|p| p.map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert!(one.rgb.iter().any(|p| p[0] > 0.0));
+    assert_eq!(bits(&one), bits(&three));
+}
