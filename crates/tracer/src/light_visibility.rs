@@ -16,6 +16,11 @@
 //! **Deterministic.** The grid is built once per scene, before any frame, from points and light
 //! samples of the tracer's own Owen-scrambled Sobol stream keyed by the cell: the same scene
 //! gives the same factors on any number of threads.
+//!
+//! **Cost.** Cubic cells, at most [`MAX_CELLS_PER_SIDE`] along the scene's longest side and
+//! fewer where [`POINTS`] × units × cells would pass [`RAY_BUDGET`] shadow rays, traced in
+//! parallel: 9–25 ms of a process on the built-in interiors, nothing per sample but a cell
+//! lookup and a multiplication per unit (BENCHMARKS.md).
 use crate::geometry::RayScratch;
 use crate::sampler::{SampleStream, hash_key};
 use crate::scene_data::SceneData;
