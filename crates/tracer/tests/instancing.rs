@@ -77,17 +77,22 @@ fn scene(instanced: bool) -> Scene {
     s
 }
 
-#[test]
-fn instances_render_the_flattened_image() {
-    let settings = RenderSettings {
-        spp: 64,
+/// Box-filtered renders of `spp` samples, seed 3.
+fn settings(spp: u32) -> RenderSettings {
+    RenderSettings {
+        spp,
         path: PathSettings::default(),
         seed: 3,
         frame: 0,
         filter: eyeadapt_scene::PixelFilter::Box,
         wcam_specular: Default::default(),
         guiding: Default::default(),
-    };
+    }
+}
+
+#[test]
+fn instances_render_the_flattened_image() {
+    let settings = settings(64);
     let (a, b) = (scene(true), scene(false));
     let (da, db) = (SceneData::new(&a), SceneData::new(&b));
     assert!(da.geometry.is_two_level() && !db.geometry.is_two_level());
@@ -198,16 +203,7 @@ fn meshes_built_side_by_side_give_the_same_bits_on_any_thread_count() {
                 assert!(data.geometry.is_two_level());
                 let mut view = View::from_camera(s.camera.as_ref().unwrap());
                 (view.width, view.height) = (24, 16);
-                let settings = RenderSettings {
-                    spp: 4,
-                    path: PathSettings::default(),
-                    seed: 3,
-                    frame: 0,
-                    filter: eyeadapt_scene::PixelFilter::Box,
-                    wcam_specular: Default::default(),
-                    guiding: Default::default(),
-                };
-                render(&data, &view, &settings)
+                render(&data, &view, &settings(4))
             })
     };
     let (one, three) = (build_and_render(1), build_and_render(3));
