@@ -272,6 +272,12 @@ impl LightPicker {
         self.is_spatial() && self.units.len() <= VISIBILITY_MAX_UNITS
     }
 
+    /// The visibility grid, if any.
+    #[cfg(test)]
+    pub fn visibility(&self) -> Option<&Visibility> {
+        self.visibility.as_ref()
+    }
+
     /// What the visibility grid says at `x`, with a tree.
     #[inline]
     fn seen_by_tree(&self, x: Vec3A) -> Option<Seen<'_>> {

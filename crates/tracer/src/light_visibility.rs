@@ -228,9 +228,8 @@ mod tests {
         assert!(vis.factors.chunks(3).any(|c| c.iter().all(|&f| f == FLOOR)));
     }
 
-    #[test]
-    fn with_a_light_tree_the_lights_behind_the_walls_lose_their_share() {
-        // Three rooms with 18 point lights more in room 3: 21 units, so a light tree.
+    /// Three rooms with 18 point lights more in room 3: 21 units, so a light tree.
+    fn rooms_and_tree() -> SceneData {
         let mut s = eyeadapt_scene::load_builtin("three-rooms").unwrap();
         for k in 0..18 {
             s.lights.push(eyeadapt_scene::Light::Point {
@@ -238,7 +237,58 @@ mod tests {
                 intensity: eyeadapt_scene::Rgb::splat(1.0),
             });
         }
-        let mut scene = SceneData::new(&s);
+        SceneData::new(&s)
+    }
+
+    #[test]
+    fn everywhere_the_probabilities_sum_to_one_and_picks_report_them_exactly() {
+        for scene in [three_rooms(), rooms_and_tree()] {
+            let lights = &scene.lights;
+            let units = lights.unit_count();
+            let (lo, hi) = (scene.geometry.bounds_min, scene.geometry.bounds_max);
+            let key = hash_key(&[0x5eed]);
+            let mut inside = 0;
+            for i in 0..300 {
+                let mut s = SampleStream::new(key, i);
+                let [a, b, c, d] = s.next_4d();
+                // The bounds and a fifth beyond them on every side (outside the grid).
+                let x = lo + (hi - lo) * (Vec3A::new(a, b, c) * 1.4 - 0.2);
+                let [e, f] = s.next_2d();
+                let n = (d < 0.8).then(|| {
+                    let z = 1.0 - 2.0 * e;
+                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let (sin, cos) = crate::trig::sincos_turns(f);
+                    Vec3A::new(r * cos, r * sin, z)
+                });
+                let probs: Vec<f32> = (0..units).map(|k| lights.picker_prob(k, x, n)).collect();
+                let sum: f32 = probs.iter().sum();
+                // The direct choice sums to 1 wherever a light reaches; a tree's walk may end
+                // in a subtree whose bounds reach `x` but none of whose lights do (it then
+                // chooses none), with or without the grid.
+                let whole = sum == 0.0 || (sum - 1.0).abs() < 1e-4;
+                assert!(
+                    whole || (units > 16 && sum < 1.0),
+                    "{units} units at {x}: probabilities sum to {sum}"
+                );
+                for j in 0..16 {
+                    match lights.picker_pick(x, n, (j as f32 + 0.5) / 16.0) {
+                        Some((k, p)) => assert_eq!(p.to_bits(), probs[k].to_bits()),
+                        None => assert!(sum == 0.0 || (units > 16 && sum < 1.0), "{sum}"),
+                    }
+                }
+                let v = lights.picker_visibility();
+                inside += v.is_some_and(|v| v.cell(x).is_some()) as u32;
+            }
+            assert!(
+                inside > 50 && inside < 250,
+                "{inside} of 300 points in the grid"
+            );
+        }
+    }
+
+    #[test]
+    fn with_a_light_tree_the_lights_behind_the_walls_lose_their_share() {
+        let mut scene = rooms_and_tree();
         assert_eq!(scene.lights.unit_count(), 21);
         let x = Vec3A::new(-1.7, 1.0, -4.6);
         let n = Some(Vec3A::Y);

@@ -116,6 +116,12 @@ impl LightSet {
         self.picker.prob(k, x, n)
     }
 
+    /// The light choice's visibility grid.
+    #[cfg(test)]
+    pub(crate) fn picker_visibility(&self) -> Option<&Visibility> {
+        self.picker.visibility()
+    }
+
     /// Whether the light choice takes a visibility grid.
     pub(crate) fn takes_visibility(&self) -> bool {
         self.picker.takes_visibility()
