@@ -360,11 +360,32 @@ mod tests {
     fn the_choice_follows_the_factors_and_its_probabilities_stay_exact() {
         let scene = three_rooms();
         let lights = &scene.lights;
-        // Near the doorway of room 1, where the orange light is partly seen.
+        let mut blind = three_rooms();
+        blind.lights.set_visibility(None);
+        let vis = lights.picker_visibility().unwrap();
+        // Near the doorway of room 1, where the orange light is partly seen, and in the room.
         for x in [Vec3A::new(0.2, 1.0, -4.6), Vec3A::new(-1.2, 1.2, -2.0)] {
             let n = Some(Vec3A::Y);
             let probs: Vec<f32> = (0..3).map(|k| lights.picker_prob(k, x, n)).collect();
             assert!((probs.iter().sum::<f32>() - 1.0).abs() < 1e-5, "{probs:?}");
+            // Each probability is the grid-blind one times the cell's factor, renormalised.
+            let f = vis.at(x).unwrap();
+            let weighed: Vec<f32> = (0..3)
+                .map(|k| blind.lights.picker_prob(k, x, n) * f[k])
+                .collect();
+            let total: f32 = weighed.iter().sum();
+            for k in 0..3 {
+                assert!(
+                    (probs[k] - weighed[k] / total).abs() < 1e-5,
+                    "unit {k}: {} against {} (factors {f:?})",
+                    probs[k],
+                    weighed[k] / total
+                );
+            }
+            assert!(
+                f.iter().any(|&fk| fk < 0.99),
+                "the grid changes nothing here: {f:?}"
+            );
             let mut counts = [0u32; 3];
             let m = 20_000;
             for i in 0..m {
