@@ -92,7 +92,8 @@ pub struct LightPicker {
     portals: Portals,
     /// With a spatial choice: which units each part of the scene sees (`light_visibility.rs`).
     visibility: Option<Visibility>,
-    /// With a tree and a visibility grid: per cell, [`Tree::seen_factors`], `tree_stride` each.
+    /// With a tree and a visibility grid: per cell, [`Tree::seen_factors`], `tree_stride` each
+    /// (kept, so that a lookup needs no division).
     tree_seen: Vec<f32>,
     tree_stride: usize,
 }
@@ -253,16 +254,15 @@ impl LightPicker {
     /// Weighs each unit's importance by how much of it the shading point's part of the scene
     /// sees (`light_visibility.rs`).
     pub fn see_through(&mut self, visibility: Option<Visibility>) {
-        (self.tree_seen, self.tree_stride) = match (&self.tree, &visibility) {
-            (Some(t), Some(v)) => {
-                let per_cell: Vec<Vec<f32>> = (0..v.cells())
-                    .map(|c| t.seen_factors(v.of_cell(c)))
-                    .collect();
-                let stride = per_cell.first().map_or(0, Vec::len);
-                (per_cell.concat(), stride)
-            }
-            _ => (Vec::new(), 0),
+        self.tree_seen = match (&self.tree, &visibility) {
+            (Some(t), Some(v)) => (0..v.cells())
+                .flat_map(|c| t.seen_factors(v.of_cell(c)))
+                .collect(),
+            _ => Vec::new(),
         };
+        self.tree_stride = visibility
+            .as_ref()
+            .map_or(0, |v| self.tree_seen.len() / v.cells());
         self.visibility = visibility;
     }
 
@@ -283,9 +283,10 @@ impl LightPicker {
     fn seen_by_tree(&self, x: Vec3A) -> Option<Seen<'_>> {
         let v = self.visibility.as_ref()?;
         let c = v.cell(x)?;
+        let stride = self.tree_stride;
         Some(Seen {
             units: v.of_cell(c),
-            tree: &self.tree_seen[c * self.tree_stride..(c + 1) * self.tree_stride],
+            tree: &self.tree_seen[c * stride..(c + 1) * stride],
         })
     }
 
