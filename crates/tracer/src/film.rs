@@ -341,13 +341,15 @@ impl Pass<'_> {
         let splats = settings.filter != PixelFilter::Box;
         // A row's splat buffer: rows y − reach ..= y + reach, each `w` (weighted sum, weight).
         let band = 2 * reach + 1;
+        // The filter's table, made once a pass (a Gaussian's is 1 025 `exp`s).
+        let weights = settings.filter.weights();
         let learn = tally.is_some();
         let render_row = |(y, row): (usize, &mut Vec<PixelAcc>)| {
             let mut splat = vec![(DVec3::ZERO, 0.0); if splats { band * w } else { 0 }];
             let mut records = Vec::new();
             for (x, acc) in row.iter_mut().enumerate() {
                 let recs = learn.then_some(&mut records);
-                self.pixel(x, y, acc, &mut splat, recs);
+                self.pixel((x, y), acc, &mut splat, &weights, recs);
             }
             (self.row_done)();
             (splat, records)
@@ -382,10 +384,10 @@ impl Pass<'_> {
     /// Renders the pass's samples of pixel (x, y) into `acc` and the row's `splat` buffer.
     fn pixel(
         &self,
-        x: usize,
-        y: usize,
+        (x, y): (usize, usize),
         acc: &mut PixelAcc,
         splat: &mut [(DVec3, f64)],
+        weights: &FilterWeights,
         mut records: Option<&mut Vec<Record>>,
     ) {
         let (settings, view) = (self.settings, self.view);
@@ -398,7 +400,6 @@ impl Pass<'_> {
             _ => false,
         };
         let splats = settings.filter != PixelFilter::Box;
-        let weights = settings.filter.weights();
         let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
         let seeds = StreamSeeds::new(key);
         // The aperture has its own stream, so pinhole renders keep their samples.
@@ -433,7 +434,7 @@ impl Pass<'_> {
             if splats {
                 splat_sample(
                     splat,
-                    &weights,
+                    weights,
                     (view.width as usize, settings.filter.reach()),
                     (x as f32 + j[0], j[1]),
                     d3(p.l),
