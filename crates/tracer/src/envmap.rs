@@ -13,7 +13,7 @@ use crate::bilinear;
 use crate::distribution2d::Distribution2D;
 use crate::emitter::luminance;
 use crate::fmath::{cell_index, floor};
-use crate::trig::sincos_turns;
+use crate::trig::{atan2_turns, sincos_turns};
 use eyeadapt_scene::EnvironmentMap;
 use glam::{Mat3A, Vec3A};
 use std::f32::consts::PI;
@@ -209,13 +209,19 @@ impl LatLong {
     /// Map coordinates (u, v) of world direction `d`, and sin θ there.
     #[inline]
     fn uv(&self, d: Vec3A) -> (f32, f32, f32) {
-        let l = (self.from_world * d).normalize();
-        let mut u = libm::atan2f(l.x, -l.z) * (0.5 / PI);
+        let l = self.from_world * d;
+        // In f64, where both angles are ratios that need no normalized `l` (u is atan2(x, −z),
+        // v is acos(y) = atan2(√(x² + z²), y)), and sin θ from x and z keeps its precision
+        // near the poles, where 1 − y² in f32 loses it.
+        let (x, y, z) = (l.x as f64, l.y as f64, l.z as f64);
+        let r2 = x * x + z * z;
+        let mut u = atan2_turns(x, -z);
         if u < 0.0 {
             u += 1.0;
         }
-        let y = l.y.clamp(-1.0, 1.0);
-        (u, libm::acosf(y) / PI, (1.0 - y * y).max(0.0).sqrt())
+        let v = 2.0 * atan2_turns(r2.sqrt(), y);
+        let sin_t = (r2 / (r2 + y * y)).sqrt();
+        (u as f32, v as f32, sin_t as f32)
     }
 
     /// Bilinear radiance at (u, v): between texel centres along u (wrapping), between rows
