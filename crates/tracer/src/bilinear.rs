@@ -22,7 +22,7 @@ pub fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
 }
 
 /// The bilinear interpolation of `w` at `p`.
-#[inline]
+#[cfg(test)]
 pub fn bilerp(p: [f32; 2], w: &Corners) -> f32 {
     let [x, y] = p;
     (1.0 - y) * ((1.0 - x) * w[0] + x * w[1]) + y * ((1.0 - x) * w[2] + x * w[3])
@@ -41,7 +41,8 @@ pub fn sample(u: [f32; 2], w: &Corners) -> [f32; 2] {
 }
 
 /// The density of [`sample`] at `p` (0 where every corner is 0). The environment map folds
-/// the division into its rows' scale factors; this is the reference its tests compare with.
+/// the division into its rows' scale factors and blends the corners with its radiance; this
+/// is the reference its tests compare with.
 #[cfg(test)]
 pub fn pdf(p: [f32; 2], w: &Corners) -> f32 {
     let sum = w[0] + w[1] + w[2] + w[3];

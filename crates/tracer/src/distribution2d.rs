@@ -14,17 +14,13 @@
 //! search's, bit for bit: k / G is exact and rounding a product by the same total is
 //! monotonic, so the bracket always holds the answer.
 
-use crate::fmath::{cell_index, cell_index_f64};
+#[cfg(test)]
+use crate::fmath::cell_index;
+use crate::fmath::cell_index_f64;
 
 pub struct Distribution2D {
     nu: usize,
     nv: usize,
-    /// `nu`, `nv` and `nu · nv` as floats: the per-sample conversions from usize, done once.
-    nu_f: f32,
-    nv_f: f32,
-    nu_d: f64,
-    nv_d: f64,
-    cells_d: f64,
     /// Row-major, per row the running sum of its weights (the last entry is the row's total).
     row_cdf: Vec<f32>,
     /// Running sum of the row totals.
@@ -126,11 +122,6 @@ impl Distribution2D {
         Some(Distribution2D {
             nu,
             nv,
-            nu_f: nu as f32,
-            nv_f: nv as f32,
-            nu_d: nu as f64,
-            nv_d: nv as f64,
-            cells_d: (nu * nv) as f64,
             row_cdf,
             marginal,
             row_guide,
@@ -148,42 +139,56 @@ impl Distribution2D {
     }
 
     /// Weight of cell (i, j).
-    #[inline]
+    #[cfg(test)]
     fn weight(&self, i: usize, j: usize) -> f64 {
         let row = self.row(j);
         let lo = if i == 0 { 0.0 } else { row[i - 1] as f64 };
         row[i] as f64 - lo
     }
 
-    /// A point of the unit square drawn from the density with `u`, and its density there.
+    /// The cell (i, j) that `u` leads to, and how far into it along u and v, in [0, 1).
     #[inline]
-    pub fn sample(&self, u: [f32; 2]) -> ([f32; 2], f32) {
+    fn invert(&self, u: [f32; 2]) -> ([usize; 2], [f64; 2]) {
         let (j, fv) = invert_guided(&self.marginal, &self.marginal_guide, u[1], self.total());
         let row = self.row(j);
         let g = self.row_guide_len + 1;
         let guide = &self.row_guide[j * g..(j + 1) * g];
         let (i, fu) = invert_guided(row, guide, u[0], row[self.nu - 1] as f64);
+        ([i, j], [fu, fv])
+    }
+
+    /// A cell drawn in proportion to its weight with `u` (never one of weight 0), and a point
+    /// uniform over it as fractions in [0, 1) along u and v: for a caller that redraws the
+    /// point inside the cell (the environment map), what [`Distribution2D::sample`] gives
+    /// without the divisions back to the unit square and the density lookup it does not need.
+    #[inline]
+    pub fn sample_cell(&self, u: [f32; 2]) -> ([usize; 2], [f32; 2]) {
+        let (cell, f) = self.invert(u);
+        (cell, f.map(|x| (x as f32).min(1.0 - f32::EPSILON / 2.0)))
+    }
+
+    /// A point of the unit square drawn from the density with `u`, and its density there.
+    #[cfg(test)]
+    pub fn sample(&self, u: [f32; 2]) -> ([f32; 2], f32) {
+        let ([i, j], [fu, fv]) = self.invert(u);
         // Below 1 after rounding to single precision; the density is the one `pdf` reports
         // at the rounded point (they differ only where rounding crosses a cell's edge).
         let below_one = |x: f64| (x as f32).min(1.0 - f32::EPSILON / 2.0);
         let p = [
-            below_one((i as f64 + fu) / self.nu_d),
-            below_one((j as f64 + fv) / self.nv_d),
+            below_one((i as f64 + fu) / self.nu as f64),
+            below_one((j as f64 + fv) / self.nv as f64),
         ];
         (p, self.pdf(p))
     }
 
-    #[inline]
-    fn cell_pdf(&self, i: usize, j: usize) -> f32 {
-        (self.weight(i, j) / self.total() * self.cells_d) as f32
-    }
-
-    /// Density at point `p` of the unit square (the cell's, constant within it).
-    #[inline]
+    /// Density at point `p` of the unit square (the cell's, constant within it). The
+    /// environment map folds it into its rows' scale factors; this is the reference its tests
+    /// compare with.
+    #[cfg(test)]
     pub fn pdf(&self, p: [f32; 2]) -> f32 {
-        let i = cell_index(p[0] * self.nu_f, self.nu);
-        let j = cell_index(p[1] * self.nv_f, self.nv);
-        self.cell_pdf(i, j)
+        let i = cell_index(p[0] * self.nu as f32, self.nu);
+        let j = cell_index(p[1] * self.nv as f32, self.nv);
+        (self.weight(i, j) / self.total() * (self.nu * self.nv) as f64) as f32
     }
 }
 
@@ -282,6 +287,28 @@ mod tests {
                 same_inversion(&cdf64, &g64, u, t64);
                 same_inversion(&cdf32, &g32, u, t32);
             }
+        }
+    }
+
+    /// The cell and fractions are the sampled point's, cell for cell, and no empty cell is
+    /// ever drawn, even at the ends of u's range.
+    #[test]
+    fn sample_cell_is_the_sampled_points_cell() {
+        let w = [0.0, 2.0, 0.0, 4.0, 0.5, 0.0, 3.0, 1.0, 8.0, 0.0, 0.25, 0.0];
+        let d = Distribution2D::new(&w, 4, 3).unwrap();
+        let key = hash_key(&[43]);
+        let ends = [0.0, 1.0 - f32::EPSILON / 2.0];
+        let corners = ends.iter().flat_map(|&a| ends.map(|b| [a, b]));
+        for u in corners.chain((0..20_000).map(|s| SampleStream::new(key, s).next_2d())) {
+            let ([i, j], f) = d.sample_cell(u);
+            assert!(w[j * 4 + i] > 0.0, "{u:?}: empty cell ({i}, {j})");
+            assert!(f.iter().all(|x| (0.0..1.0).contains(x)), "{f:?}");
+            let (p, _) = d.sample(u);
+            let q = [(i as f32 + f[0]) / 4.0, (j as f32 + f[1]) / 3.0];
+            assert!(
+                (q[0] - p[0]).abs() < 1e-6 && (q[1] - p[1]).abs() < 1e-6,
+                "{q:?} {p:?}"
+            );
         }
     }
 

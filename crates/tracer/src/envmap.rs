@@ -15,7 +15,7 @@ use crate::emitter::luminance;
 use crate::fmath::{cell_index, floor};
 use crate::trig::{atan2_turns, sincos_turns};
 use eyeadapt_scene::EnvironmentMap;
-use glam::{Mat3A, Vec3A};
+use glam::{Mat3A, Vec3A, Vec4};
 use std::f32::consts::PI;
 
 pub enum Environment {
@@ -32,18 +32,18 @@ pub struct LatLong {
     w_f: f32,
     h_last_f: f32,
     half_texel: f32,
-    /// Radiance (scale applied), row 0 at the +y pole of the map's frame; each row repeats
-    /// its first texel at the end (a stride of w + 1), so the right neighbour of column
-    /// i < w is always at i + 1 and a lookup needs no wrap of its second column.
-    texels: Vec<Vec3A>,
-    /// The sampling luminance of each texel, in the same layout as `texels`.
-    lum: Vec<f32>,
-    /// The cells of `dist` in v (`(h − 1).max(1)`), and as f32.
-    nv: usize,
+    /// Radiance (scale applied) in x, y, z and the sampling luminance in w, row 0 at the +y
+    /// pole of the map's frame; each row repeats its first texel at the end (a stride of
+    /// w + 1), so the right neighbour of column i < w is always at i + 1 and a lookup needs no
+    /// wrap of its second column. One bilinear blend of four lanes gives both the radiance
+    /// and the density of a direction.
+    texels: Vec<Vec4>,
+    /// The cells of `dist` in v, `(h − 1).max(1)`, as f32.
     nv_f: f32,
     /// Per row of cells, `dist`'s density over its unit square per unit of bilinear luminance:
     /// a cell's weight is its corners' mean luminance × `band`, so the density at a point is
-    /// `bilerp(corners) × band × cells / total`, with no division per lookup.
+    /// `bilerp(corners) × band × cells / total`, with no division per lookup. The cells lie
+    /// between texel centres, as the radiance's bilinear blend does, so one blend serves both.
     row_scale: Vec<f32>,
     to_world: Mat3A,
     from_world: Mat3A,
@@ -77,7 +77,7 @@ impl Environment {
             Environment::Constant(c) => *c,
             Environment::Map(m) => {
                 let (u, v, _) = m.uv(d);
-                m.lookup(u, v)
+                Vec3A::from_vec4(m.lookup(u, v).0)
             }
         }
     }
@@ -88,10 +88,7 @@ impl Environment {
     pub fn radiance_and_pdf(&self, d: Vec3A) -> (Vec3A, f32) {
         match self {
             Environment::Constant(c) => (*c, 1.0 / (4.0 * PI)),
-            Environment::Map(m) => {
-                let (u, v, sin_t) = m.uv(d);
-                (m.lookup(u, v), m.pdf_uv(u, v, sin_t))
-            }
+            Environment::Map(m) => m.radiance_and_pdf(d),
         }
     }
 
@@ -118,10 +115,7 @@ impl Environment {
     pub fn pdf(&self, d: Vec3A) -> f32 {
         match self {
             Environment::Constant(_) => 1.0 / (4.0 * PI),
-            Environment::Map(m) => {
-                let (u, v, sin_t) = m.uv(d);
-                m.pdf_uv(u, v, sin_t)
-            }
+            Environment::Map(m) => m.radiance_and_pdf(d).1,
         }
     }
 
@@ -140,16 +134,15 @@ impl LatLong {
         if w == 0 || h == 0 {
             return None;
         }
-        let mut texels: Vec<Vec3A> = Vec::with_capacity((w + 1) * h);
+        let mut texels: Vec<Vec4> = Vec::with_capacity((w + 1) * h);
         for row in m.image.texels.chunks_exact(w) {
-            texels.extend(row.iter().map(|t| Vec3A::from(*t) * m.scale + add));
+            texels.extend(row.iter().map(|t| {
+                let c = Vec3A::from(*t) * m.scale + add;
+                c.extend(luminance(c).max(1e-6 * c.max_element()).max(0.0))
+            }));
             texels.push(texels[texels.len() - w]);
         }
         let stride = w + 1;
-        let lum: Vec<f32> = texels
-            .iter()
-            .map(|c| luminance(*c).max(1e-6 * c.max_element()).max(0.0))
-            .collect();
         let nv = (h - 1).max(1);
         let mut weights = Vec::with_capacity(w * nv);
         let mut bands = Vec::with_capacity(nv);
@@ -168,14 +161,8 @@ impl LatLong {
                     texels[j1 * stride + i],
                     texels[j1 * stride + i1],
                 ];
-                let l = [
-                    j0 * stride + i,
-                    j0 * stride + i1,
-                    j1 * stride + i,
-                    j1 * stride + i1,
-                ];
-                weights.push(0.25 * l.iter().map(|&k| lum[k]).sum::<f32>() * band);
-                let avg = corners.iter().copied().sum::<Vec3A>() * 0.25;
+                weights.push(0.25 * corners.iter().map(|t| t.w).sum::<f32>() * band);
+                let avg = Vec3A::from_vec4(corners.iter().copied().sum::<Vec4>() * 0.25);
                 sum +=
                     glam::Vec3::from(avg).as_dvec3() * (band as f64 * 2.0 * PI as f64 / w as f64);
             }
@@ -195,8 +182,6 @@ impl LatLong {
             h_last_f: (h - 1) as f32,
             half_texel: 0.5 / w as f32,
             texels,
-            lum,
-            nv,
             nv_f: nv as f32,
             row_scale,
             to_world,
@@ -224,10 +209,30 @@ impl LatLong {
         (u as f32, v as f32, sin_t as f32)
     }
 
-    /// Bilinear radiance at (u, v): between texel centres along u (wrapping), between rows
-    /// along v (row 0 at v = 0, the last row at v = 1).
+    /// Radiance and solid-angle density (zero at the poles) of world direction `d`.
     #[inline]
-    fn lookup(&self, u: f32, v: f32) -> Vec3A {
+    fn radiance_and_pdf(&self, d: Vec3A) -> (Vec3A, f32) {
+        let (u, v, sin_t) = self.uv(d);
+        self.radiance_and_pdf_uv(u, v, sin_t)
+    }
+
+    /// [`LatLong::radiance_and_pdf`] at map point (u, v), where sin θ is `sin_t`.
+    #[inline]
+    fn radiance_and_pdf_uv(&self, u: f32, v: f32, sin_t: f32) -> (Vec3A, f32) {
+        let (t, j) = self.lookup(u, v);
+        let pdf = if sin_t > 0.0 {
+            t.w * self.row_scale[j] / (2.0 * PI * PI * sin_t)
+        } else {
+            0.0
+        };
+        (Vec3A::from_vec4(t), pdf)
+    }
+
+    /// Bilinear radiance and sampling luminance at (u, v): between texel centres along u
+    /// (wrapping), between rows along v (row 0 at v = 0, the last row at v = 1); and the row
+    /// of `dist`'s cells the point lies in.
+    #[inline]
+    fn lookup(&self, u: f32, v: f32) -> (Vec4, usize) {
         let x = u * self.w_f - 0.5;
         let x0 = floor(x);
         let fx = x - x0;
@@ -251,64 +256,32 @@ impl LatLong {
         let ((t00, t10), (t01, t11)) = (t(j0), t(j1));
         let top = t00 * (1.0 - fx) + t10 * fx;
         let bottom = t01 * (1.0 - fx) + t11 * fx;
-        top * (1.0 - fy) + bottom * fy
+        (top * (1.0 - fy) + bottom * fy, j0)
     }
 
-    /// The distribution's coordinates of map point (u, v).
+    /// The sampling luminances at the corners of `dist`'s cell (i, j).
     #[inline]
-    fn cell_coords(&self, u: f32, v: f32) -> [f32; 2] {
-        // rem_euclid is the identity on [0, w) (an fmodf call saved for all but the seam).
-        let w = self.w_f;
-        let x = match u * w - 0.5 {
-            x if (0.0..w).contains(&x) => x,
-            x => x.rem_euclid(w),
-        } / w;
-        [x, v]
-    }
-
-    /// The cell of `dist` that point `p` of its unit square lies in, `p`'s place inside it, and
-    /// the cell's corner luminances.
-    #[inline]
-    fn cell_at(&self, p: [f32; 2]) -> ([usize; 2], [f32; 2], bilinear::Corners) {
-        let (x, y) = (p[0] * self.w_f, p[1] * self.nv_f);
-        let (i, j) = (cell_index(x, self.w), cell_index(y, self.nv));
-        let f = [
-            (x - i as f32).clamp(0.0, 1.0),
-            (y - j as f32).clamp(0.0, 1.0),
-        ];
+    fn corners(&self, i: usize, j: usize) -> bilinear::Corners {
         // Rows as `lookup` takes them; column i + 1 is the padding column after the last.
         let stride = self.w + 1;
-        let (r0, r1) = (
-            j.min(self.h - 1) * stride + i,
-            (j + 1).min(self.h - 1) * stride + i,
-        );
-        let l = &self.lum;
-        ([i, j], f, [l[r0], l[r0 + 1], l[r1], l[r1 + 1]])
-    }
-
-    #[inline]
-    fn pdf_uv(&self, u: f32, v: f32, sin_t: f32) -> f32 {
-        if sin_t <= 0.0 {
-            return 0.0;
-        }
-        let ([_, j], f, corners) = self.cell_at(self.cell_coords(u, v));
-        bilinear::bilerp(f, &corners) * self.row_scale[j] / (2.0 * PI * PI * sin_t)
+        let (r0, r1) = (j * stride + i, (j + 1).min(self.h - 1) * stride + i);
+        let t = &self.texels;
+        [t[r0].w, t[r0 + 1].w, t[r1].w, t[r1 + 1].w]
     }
 
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<EnvSample> {
-        let (p, pdf) = self.dist.sample(u);
-        // The point's place in its cell is uniform: redraw it from the bilinear luminance.
-        let ([i, j], f, corners) = self.cell_at(p);
-        let q = bilinear::sample(f, &corners);
-        let p = [(i as f32 + q[0]) / self.w_f, (j as f32 + q[1]) / self.nv_f];
-        let mut mu = p[0] + self.half_texel;
+        // A cell by its weight, then a point in it by the bilinear luminance (the cell's
+        // fractions of `u` are uniform, and serve as the bilinear draw's).
+        let ([i, j], f) = self.dist.sample_cell(u);
+        let q = bilinear::sample(f, &self.corners(i, j));
+        let mut mu = (i as f32 + q[0]) / self.w_f + self.half_texel;
         if mu >= 1.0 {
             mu -= 1.0;
         }
-        let v = p[1];
+        let v = (j as f32 + q[1]) / self.nv_f;
         let (sin_t, cos_t) = sincos_turns(0.5 * v);
-        if sin_t <= 0.0 || pdf <= 0.0 {
+        if sin_t <= 0.0 {
             return None;
         }
         let (sin_p, cos_p) = sincos_turns(mu);
@@ -316,13 +289,8 @@ impl LatLong {
         let wi = (self.to_world * local).normalize();
         // Radiance and density as a ray escaping along `wi` will see them (rounding in the
         // round trip can move a direction across a cell's edge; MIS needs the same numbers).
-        let (u, v, sin_t) = self.uv(wi);
-        let pdf = self.pdf_uv(u, v, sin_t);
-        (pdf > 0.0).then(|| EnvSample {
-            wi,
-            li: self.lookup(u, v),
-            pdf,
-        })
+        let (li, pdf) = self.radiance_and_pdf(wi);
+        (pdf > 0.0).then_some(EnvSample { wi, li, pdf })
     }
 }
 
@@ -361,10 +329,9 @@ mod tests {
         }
     }
 
-    /// The seam shortcuts (no division inside [0, w)) give the wrapped indices and cell
-    /// coordinates of the plain `rem_euclid` forms, bit for bit, across the whole u range and
-    /// just around the seam, and the padded texel table gives the plain bilinear lookup in
-    /// every row.
+    /// The seam shortcut (no division inside [0, w)) gives the wrapped indices of the plain
+    /// `rem_euclid` form across the whole u range and just around the seam, and the padded
+    /// texel table gives the plain bilinear lookup in every row, bit for bit.
     #[test]
     fn wrapping_along_u_is_the_plain_rem_euclid() {
         let (w, h) = (7u32, 4u32);
@@ -375,8 +342,6 @@ mod tests {
         let mut us: Vec<f32> = (0..=4000).map(|k| k as f32 / 4000.0).collect();
         us.extend([0.5 / wf, 0.5 / wf - 1e-7, 1.0 - 1e-7, -0.0, 1e-30]);
         for u in us {
-            let x = (u * wf - 0.5).rem_euclid(wf) / wf;
-            assert_eq!(ll.cell_coords(u, 0.3)[0].to_bits(), x.to_bits(), "u {u}");
             // lookup's wrapped columns, by the texel values they blend.
             let xf = u * wf - 0.5;
             let x0 = xf.floor();
@@ -392,7 +357,7 @@ mod tests {
                 let top = t(i0, j0) * (1.0 - fx) + t(i1, j0) * fx;
                 let bottom = t(i0, j0 + 1) * (1.0 - fx) + t(i1, j0 + 1) * fx;
                 let want = top * (1.0 - fy) + bottom * fy;
-                assert_eq!(ll.lookup(u, v), want, "u {u} v {v}");
+                assert_eq!(Vec3A::from_vec4(ll.lookup(u, v).0), want, "u {u} v {v}");
             }
         }
     }
@@ -450,14 +415,50 @@ mod tests {
                 (k / 71) as f32 / 71.0 + 0.004,
             );
             let sin_t = libm::sinf(PI * v);
-            let c = m.cell_coords(u, v);
-            let (_, f, corners) = m.cell_at(c);
+            // The cell of `dist` (its unit square is shifted half a texel along u) and the
+            // place in it.
+            let c = [(u * 7.0 - 0.5).rem_euclid(7.0) / 7.0, v];
+            let (x, y) = (c[0] * 7.0, c[1] * 4.0);
+            let (i, j) = (x as usize, y as usize);
+            let f = [x - i as f32, y - j as f32];
+            let corners = m.corners(i, j);
             let want = m.dist.pdf(c) * bilinear::pdf(f, &corners) / (2.0 * PI * PI * sin_t);
-            let got = m.pdf_uv(u, v, sin_t);
+            let got = m.radiance_and_pdf_uv(u, v, sin_t).1;
             assert!(
                 (got - want).abs() <= 1e-4 * want.max(1e-3),
                 "({u}, {v}): {got} against {want}"
             );
         }
+    }
+
+    /// A drawn direction is unit, and carries the radiance and density that a ray escaping
+    /// along it sees, bit for bit (MIS weighs the two strategies with them), on a rotated map
+    /// with a bright texel and a black one.
+    #[test]
+    fn samples_carry_what_an_escaping_ray_sees() {
+        let (w, h) = (16u32, 8u32);
+        let texels = (0..w * h)
+            .map(|k| match k {
+                37 => Rgb::new(900.0, 800.0, 600.0),
+                70 => Rgb::new(0.0, 0.0, 0.0),
+                _ => Rgb::new(0.1 + 0.05 * (k % 9) as f32, 0.2, 0.03 * (k % 4) as f32),
+            })
+            .collect();
+        let turn = glam::Mat3::from_rotation_z(0.4) * glam::Mat3::from_rotation_y(-1.1);
+        let env = Environment::new(None, Some(&test_map(w, h, texels, 3.0, turn))).unwrap();
+        let key = crate::sampler::hash_key(&[5]);
+        let mut drawn = 0;
+        for s in 0..50_000 {
+            let Some(es) = env.sample(crate::sampler::SampleStream::new(key, s).next_2d()) else {
+                continue;
+            };
+            drawn += 1;
+            assert!((es.wi.length() - 1.0).abs() < 1e-6, "{}", es.wi);
+            let (li, pdf) = env.radiance_and_pdf(es.wi);
+            assert_eq!(es.li, li, "{}", es.wi);
+            assert_eq!(es.pdf.to_bits(), pdf.to_bits(), "{}", es.wi);
+            assert!(es.pdf > 0.0);
+        }
+        assert!(drawn > 49_990, "{drawn}");
     }
 }
