@@ -37,4 +37,7 @@
 ///    build).
 /// 12: the Gaussian pixel filter's weights come from a table (within 2e-6 of the exact ones;
 ///    scenes with that filter, in the last bits).
-pub const RENDER_REVISION: u32 = 12;
+/// 13: an environment map's longitude and colatitude come from the tracer's own f64 atan2
+///    (within an f32 ulp of libm's `atan2f` / `acosf`), and its density from the same bilinear
+///    blend as its radiance (scenes with a map, in the last bits).
+pub const RENDER_REVISION: u32 = 13;
