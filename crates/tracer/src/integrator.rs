@@ -219,8 +219,8 @@ pub(crate) fn trace_guided(
     // direct light at the first hit is then one jointly stratified 4-D integral over
     // (direction, light point) instead of two 2-D ones paired at random. Every later vertex
     // likewise draws its light sample together with the direction that leads to it.
-    let mut path =
-        PathState::new(o, d, from, s.next_2d(), aovs).guided_by(guide, records.is_some());
+    let mut path = PathState::new(o, d, from, s.next_2d(), aovs);
+    path.use_guide(guide, records.is_some());
     let max_depth = if settings.max_depth < 0 {
         u32::MAX
     } else {

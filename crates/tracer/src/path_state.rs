@@ -127,12 +127,12 @@ impl<'g> PathState<'g> {
     }
 
     /// The path samples from `guide` where guiding applies, and records what it sees when
-    /// `learn`.
+    /// `learn`. In place: taking and returning the state by value copied all of it (about 40
+    /// instructions a path).
     #[inline]
-    pub fn guided_by(mut self, guide: Option<&'g SdTree>, learn: bool) -> PathState<'g> {
+    pub fn use_guide(&mut self, guide: Option<&'g SdTree>, learn: bool) {
         self.guide = guide;
         self.recorder = (guide.is_some() && learn).then(Box::default);
-        self
     }
 
     /// Guiding at `v`: none without a guide, or where it does not apply (`guidable`, and not
