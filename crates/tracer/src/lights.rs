@@ -212,6 +212,7 @@ impl LightSet {
     }
 
     /// A point (or direction) of unit `k`, chosen with probability `p`, seen from `x`.
+    #[inline]
     pub(crate) fn sample_unit(
         &self,
         k: usize,
