@@ -404,14 +404,15 @@ impl LightPicker {
         for (wk, b) in w[a..].iter_mut().zip(&self.bounds[a..]) {
             *wk = unit_importance(b, x, n, behind);
         }
-        if let Some(f) = self.visibility.as_ref().and_then(|v| v.at(x)) {
-            for (wk, fk) in w.iter_mut().zip(f) {
-                *wk *= fk;
-            }
-        }
+        // One pass over the units (the grid has a factor for each), summed in their order.
+        let w = &mut w[..self.units.len()];
         let mut total = 0.0;
-        for &wk in &w[..self.units.len()] {
-            total += wk;
+        match self.visibility.as_ref().and_then(|v| v.at(x)) {
+            Some(f) => w.iter_mut().zip(f).for_each(|(wk, fk)| {
+                *wk *= fk;
+                total += *wk;
+            }),
+            None => w.iter().for_each(|&wk| total += wk),
         }
         total
     }
