@@ -82,6 +82,8 @@ pub struct LightPicker {
     /// Cumulative power weights over `units`.
     cdf: Vec<f64>,
     total: f64,
+    /// [`LightPicker::power_prob`] of each unit as `f32`: no f64 division at every vertex.
+    probs: Vec<f32>,
     spatial: bool,
     /// With a spatial choice: its area units (the first ones), four to a vector.
     area4: AreaUnits4,
@@ -236,11 +238,12 @@ impl LightPicker {
         let tree = (units.len() > SPATIAL_MAX_UNITS)
             .then(|| Tree::build(&bounds))
             .flatten();
-        LightPicker {
+        let mut picker = LightPicker {
             units,
             bounds,
             cdf,
             total,
+            probs: Vec::new(),
             spatial,
             area4: area4.unwrap_or_default(),
             tree,
@@ -248,7 +251,10 @@ impl LightPicker {
             visibility: None,
             tree_seen: Vec::new(),
             tree_stride: 0,
-        }
+        };
+        let prob = |k| picker.power_prob(k) as f32;
+        picker.probs = (0..picker.units.len()).map(prob).collect();
+        picker
     }
 
     /// Weighs each unit's importance by how much of it the shading point's part of the scene
@@ -352,7 +358,7 @@ impl LightPicker {
                 .cdf
                 .partition_point(|&c| c <= target)
                 .min(self.cdf.len() - 1);
-            return Some((k, self.power_prob(k) as f32));
+            return Some((k, self.probs[k]));
         }
         let mut w = [0.0f32; SPATIAL_MAX_UNITS];
         let total = self.importances(x, n, &mut w);
@@ -387,7 +393,7 @@ impl LightPicker {
             );
         }
         if !self.spatial {
-            return self.power_prob(k) as f32;
+            return self.probs[k];
         }
         let mut w = [0.0f32; SPATIAL_MAX_UNITS];
         let total = self.importances(x, n, &mut w);
