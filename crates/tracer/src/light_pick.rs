@@ -82,7 +82,7 @@ pub struct LightPicker {
     /// Cumulative power weights over `units`.
     cdf: Vec<f64>,
     total: f64,
-    /// [`LightPicker::power_prob`] of each unit as `f32`: no f64 division at every vertex.
+    /// Each unit's share of power, `power(k) / total`, as `f32`: no f64 division a vertex.
     probs: Vec<f32>,
     spatial: bool,
     /// With a spatial choice: its area units (the first ones), four to a vector.
@@ -223,6 +223,8 @@ impl LightPicker {
             total += w.max(1e-12);
             cdf.push(total);
         }
+        let lo = std::iter::once(0.0).chain(cdf.clone());
+        let probs = Vec::from_iter(cdf.iter().zip(lo).map(|(c, lo)| ((c - lo) / total) as f32));
         let spatial = (2..=SPATIAL_MAX_UNITS).contains(&units.len());
         // Area units come first: the spatial choice weighs them four at a time.
         let area4 = spatial.then(|| {
@@ -238,12 +240,12 @@ impl LightPicker {
         let tree = (units.len() > SPATIAL_MAX_UNITS)
             .then(|| Tree::build(&bounds))
             .flatten();
-        let mut picker = LightPicker {
+        LightPicker {
             units,
             bounds,
             cdf,
             total,
-            probs: Vec::new(),
+            probs,
             spatial,
             area4: area4.unwrap_or_default(),
             tree,
@@ -251,10 +253,7 @@ impl LightPicker {
             visibility: None,
             tree_seen: Vec::new(),
             tree_stride: 0,
-        };
-        let prob = |k| picker.power_prob(k) as f32;
-        picker.probs = (0..picker.units.len()).map(prob).collect();
-        picker
+        }
     }
 
     /// Weighs each unit's importance by how much of it the shading point's part of the scene
@@ -332,6 +331,7 @@ impl LightPicker {
     }
 
     /// Probability of choosing unit `k` regardless of the shading point (its share of power).
+    #[cfg(test)]
     pub fn power_prob(&self, k: usize) -> f64 {
         self.power(k) / self.total
     }
