@@ -99,7 +99,13 @@ pub fn assert_killed_csv_intact(dir: &Path, committed: usize) -> bool {
         assert!(csv.is_empty(), "the CSV's header is torn: {csv:?}");
         return false;
     };
-    let mut rows: Vec<_> = walk(&dir.join("rows"));
+    // The committed and in-flight row files, not a killed write's temporary file
+    // (`.frame_NNNNNN.csv.tmp-PID`, which the next run removes): sorted with them, it came
+    // first and shifted every frame (a failure seen under load, when kills land in writes).
+    let mut rows: Vec<_> = walk(&dir.join("rows"))
+        .into_iter()
+        .filter(|(name, _)| !name.starts_with('.'))
+        .collect();
     rows.sort();
     let files: Vec<String> = rows
         .iter()
