@@ -109,7 +109,9 @@ impl FilterWeights {
                 if t.is_nan() || t >= GAUSSIAN_TABLE as f32 || self.table.is_empty() {
                     return 0.0;
                 }
-                let k = t as usize; // t in [0, GAUSSIAN_TABLE): k + 1 is in the table
+                // t is in [0, GAUSSIAN_TABLE): k + 1 is in the table. Through i32: a float's
+                // saturating cast to usize is a dozen instructions more on x86-64's baseline.
+                let k = t as i32 as usize;
                 let f = t - k as f32;
                 let (a, b) = (self.table[k], self.table[k + 1]);
                 a + (b - a) * f
