@@ -121,10 +121,16 @@ impl DeltaLight {
             return None;
         }
         let wi = d / dist;
+        // A point light's intensity is the same in every direction: no call for it (the
+        // spatial light choice asks for every vertex).
+        let intensity = match *self {
+            DeltaLight::Point { intensity, .. } => intensity,
+            _ => self.intensity(-wi, lookup),
+        };
         Some(Arrival {
             wi,
             dist,
-            li: self.intensity(-wi, lookup) / d2,
+            li: intensity / d2,
         })
     }
 
