@@ -38,10 +38,10 @@
 use crate::beam::Lookup;
 use crate::emitter::{AreaTri, DeltaLight, Parallelogram, luminance};
 use crate::light_pick4::{AreaUnit, AreaUnits4};
-use crate::light_tree::LightBounds;
 use crate::light_visibility::Visibility;
 use crate::portal::Portals;
 use glam::Vec3A;
+use rest::Rests;
 use std::f32::consts::PI;
 use tree::Tree;
 
@@ -85,8 +85,10 @@ pub struct LightPicker {
     /// Each unit's share of power, `power(k) / total`, as `f32`: no f64 division a vertex.
     probs: Vec<f32>,
     spatial: bool,
-    /// With a spatial choice: its area units (the first ones), four to a vector.
+    /// With a spatial choice: its area units (the first ones), four to a vector, and the
+    /// others (`light_pick_rest.rs`).
     area4: AreaUnits4,
+    rest: Rests,
     /// With more than [`SPATIAL_MAX_UNITS`] units: the tree over the positioned ones.
     tree: Option<Tree>,
     /// The openings the environment and the sun reach the interior through (none: they
@@ -237,6 +239,7 @@ impl LightPicker {
                 .collect();
             AreaUnits4::pack(&area)
         });
+        let rest = area4.as_ref().map(|a| Rests::new(&bounds[a.len()..]));
         let tree = (units.len() > SPATIAL_MAX_UNITS)
             .then(|| Tree::build(&bounds))
             .flatten();
@@ -248,6 +251,7 @@ impl LightPicker {
             probs,
             spatial,
             area4: area4.unwrap_or_default(),
+            rest: rest.unwrap_or_default(),
             tree,
             portals: Portals::default(),
             visibility: None,
@@ -403,13 +407,10 @@ impl LightPicker {
     /// Every unit's importance at (`x`, `n`) into `w`; returns their sum.
     fn importances(&self, x: Vec3A, n: Option<Vec3A>, w: &mut [f32; SPATIAL_MAX_UNITS]) -> f32 {
         // Four at a time and bit for bit what `importance` gives (light_pick4.rs); the others
-        // overwrite what it left past the last area unit.
+        // (bit for bit `unit_importance`'s) overwrite what it left past the last area unit.
         self.area4.importances(x, n, w);
-        let a = self.area4.len();
-        let behind = self.behind(x);
-        for (wk, b) in w[a..].iter_mut().zip(&self.bounds[a..]) {
-            *wk = unit_importance(b, x, n, behind);
-        }
+        let (a, all) = (self.area4.len(), self.units.len());
+        self.rest.importances(x, n, self.behind(x), &mut w[a..all]);
         // One pass over the units (the grid has a factor for each), summed in their order.
         let w = &mut w[..self.units.len()];
         let mut total = 0.0;
@@ -440,62 +441,6 @@ fn unit_importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>, behind: Option<Behind
         }
         _ => w,
     }
-}
-
-/// A unit's bounds for the light tree; `None` for a unit without a position.
-fn light_bounds(b: &Bounds) -> Option<LightBounds> {
-    let at = |p: Vec3A, phi: f32| LightBounds {
-        lo: p,
-        hi: p,
-        axis: Vec3A::Z,
-        cos_o: -1.0,
-        cos_e: 0.0,
-        phi,
-    };
-    Some(match *b {
-        Bounds::Area(AreaUnit {
-            normal,
-            corners,
-            power,
-            ..
-        }) => LightBounds {
-            lo: corners.iter().fold(Vec3A::INFINITY, |a, c| a.min(*c)),
-            hi: corners.iter().fold(Vec3A::NEG_INFINITY, |a, c| a.max(*c)),
-            axis: normal,
-            cos_o: 1.0,
-            cos_e: 0.0,
-            phi: power,
-        },
-        Bounds::Delta(DeltaLight::Point {
-            position,
-            intensity,
-        }) => at(position, weight_luminance(intensity)),
-        Bounds::Delta(DeltaLight::Spot {
-            position,
-            direction,
-            intensity,
-            cos_cone,
-            ..
-        }) => LightBounds {
-            axis: direction.normalize_or(Vec3A::Z),
-            cos_o: if direction.length_squared() > 0.0 {
-                cos_cone
-            } else {
-                -1.0
-            },
-            cos_e: 1.0,
-            ..at(position, weight_luminance(intensity))
-        },
-        // Textured spots and projectors as if they shone everywhere (their cones are in a
-        // frame that may be scaled): conservative, and their own importance decides at the leaf.
-        Bounds::Delta(DeltaLight::TexturedSpot(ref s)) => {
-            at(s.position, weight_luminance(s.colour()))
-        }
-        Bounds::Delta(DeltaLight::Projector(ref p)) => {
-            at(p.position, weight_luminance(p.power()) / PI)
-        }
-        Bounds::Delta(DeltaLight::Directional { .. }) | Bounds::Env { .. } => return None,
-    })
 }
 
 /// How far `x` is in front of an area unit's plane, or `None` where the unit delivers nothing
@@ -594,6 +539,9 @@ fn importance(b: &Bounds, x: Vec3A, n: Option<Vec3A>) -> f32 {
 
 #[path = "light_pick_tree.rs"]
 mod tree;
+
+#[path = "light_pick_rest.rs"]
+mod rest;
 
 #[cfg(test)]
 #[path = "light_pick_tests.rs"]

@@ -2,9 +2,12 @@
 //! [`SPATIAL_MAX_UNITS`](super::SPATIAL_MAX_UNITS) units: the choice among the units that have
 //! a position goes down a [`LightTree`], and the units without one (directional lights, the
 //! environment) compete with its root.
-use super::{Behind, Bounds, Seen, importance, light_bounds, tree_leaf, unit_importance};
-use crate::light_tree::LightTree;
+use super::{Behind, Bounds, Seen, importance, tree_leaf, unit_importance, weight_luminance};
+use crate::emitter::DeltaLight;
+use crate::light_pick4::AreaUnit;
+use crate::light_tree::{LightBounds, LightTree};
 use glam::Vec3A;
+use std::f32::consts::PI;
 
 /// The light tree of a picker and how its leaves map to units.
 pub(super) struct Tree {
@@ -156,4 +159,60 @@ fn unbounded_importance(
     seen: Option<Seen>,
 ) -> f32 {
     unit_importance(&bounds[k], x, n, behind) * seen.map_or(1.0, |s| s.units[k])
+}
+
+/// A unit's bounds for the light tree; `None` for a unit without a position.
+fn light_bounds(b: &Bounds) -> Option<LightBounds> {
+    let at = |p: Vec3A, phi: f32| LightBounds {
+        lo: p,
+        hi: p,
+        axis: Vec3A::Z,
+        cos_o: -1.0,
+        cos_e: 0.0,
+        phi,
+    };
+    Some(match *b {
+        Bounds::Area(AreaUnit {
+            normal,
+            corners,
+            power,
+            ..
+        }) => LightBounds {
+            lo: corners.iter().fold(Vec3A::INFINITY, |a, c| a.min(*c)),
+            hi: corners.iter().fold(Vec3A::NEG_INFINITY, |a, c| a.max(*c)),
+            axis: normal,
+            cos_o: 1.0,
+            cos_e: 0.0,
+            phi: power,
+        },
+        Bounds::Delta(DeltaLight::Point {
+            position,
+            intensity,
+        }) => at(position, weight_luminance(intensity)),
+        Bounds::Delta(DeltaLight::Spot {
+            position,
+            direction,
+            intensity,
+            cos_cone,
+            ..
+        }) => LightBounds {
+            axis: direction.normalize_or(Vec3A::Z),
+            cos_o: if direction.length_squared() > 0.0 {
+                cos_cone
+            } else {
+                -1.0
+            },
+            cos_e: 1.0,
+            ..at(position, weight_luminance(intensity))
+        },
+        // Textured spots and projectors as if they shone everywhere (their cones are in a
+        // frame that may be scaled): conservative, and their own importance decides at the leaf.
+        Bounds::Delta(DeltaLight::TexturedSpot(ref s)) => {
+            at(s.position, weight_luminance(s.colour()))
+        }
+        Bounds::Delta(DeltaLight::Projector(ref p)) => {
+            at(p.position, weight_luminance(p.power()) / PI)
+        }
+        Bounds::Delta(DeltaLight::Directional { .. }) | Bounds::Env { .. } => return None,
+    })
 }
