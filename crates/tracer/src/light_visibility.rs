@@ -47,6 +47,8 @@ pub struct Visibility {
     /// 1 / the cells' side.
     inv_side: f32,
     dims: [u32; 3],
+    /// `dims` as `f32` (exact: at most [`MAX_CELLS_PER_SIDE`] each).
+    dims_f: Vec3A,
     units: usize,
     /// `units` factors per cell, cells in x-fastest order.
     factors: Vec<f32>,
@@ -81,6 +83,7 @@ impl Visibility {
             lo,
             inv_side: 1.0 / side,
             dims,
+            dims_f: Vec3A::from_array(dims.map(|d| d as f32)),
             units,
             factors,
         })
@@ -106,7 +109,21 @@ impl Visibility {
     /// The cell holding `x` (none outside the grid).
     #[inline]
     pub fn cell(&self, x: Vec3A) -> Option<usize> {
-        let c = ((x - self.lo) * self.inv_side).floor();
+        let v = (x - self.lo) * self.inv_side;
+        // Every coordinate in [0, its number of cells) (no NaN): its floor is its truncation,
+        // and the general test below would find the same cell. Most points take this path.
+        if (v.cmpge(Vec3A::ZERO) & v.cmplt(self.dims_f)).all() {
+            let [i, j, k] = truncate(v);
+            let [nx, ny, _] = self.dims;
+            return Some(((k * ny + j) * nx + i) as usize);
+        }
+        self.cell_of(v)
+    }
+
+    /// [`Visibility::cell`] for any cell coordinates `v` (NaN, negative, past the grid).
+    #[cold]
+    fn cell_of(&self, v: Vec3A) -> Option<usize> {
+        let c = v.floor();
         if c.min_element() < 0.0 {
             return None;
         }
@@ -116,6 +133,23 @@ impl Visibility {
             return None;
         }
         Some(((k * ny + j) * nx + i) as usize)
+    }
+}
+
+/// `v`'s coordinates truncated towards zero, for coordinates in [0, 2³¹).
+#[inline(always)]
+fn truncate(v: Vec3A) -> [u32; 3] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{__m128i, _mm_cvttps_epi32};
+        // SAFETY: SSE2 (and so cvttps2dq) is part of the x86_64 baseline; an __m128i is
+        // four i32s.
+        let t = unsafe { std::mem::transmute::<__m128i, [i32; 4]>(_mm_cvttps_epi32(v.into())) };
+        [t[0] as u32, t[1] as u32, t[2] as u32]
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        v.to_array().map(|c| c as u32)
     }
 }
 
@@ -200,6 +234,45 @@ mod tests {
             .next()
             .unwrap();
         (li.x - li.z).abs() < 1e-3 * li.max_element()
+    }
+
+    #[test]
+    fn the_quick_cell_lookup_finds_the_general_one_s_cell() {
+        let vis = Visibility {
+            lo: Vec3A::new(-3.1, -0.05, -10.2),
+            inv_side: 1.0 / 0.37,
+            dims: [17, 8, 29],
+            dims_f: Vec3A::new(17.0, 8.0, 29.0),
+            units: 1,
+            factors: vec![1.0; 17 * 8 * 29],
+        };
+        let hi = vis.lo + vis.dims_f / vis.inv_side;
+        let mut f = 0.4142f32;
+        let mut next = move || {
+            f = (f * 89.17 + 0.31).fract();
+            f
+        };
+        let mut points: Vec<Vec3A> = (0..20_000)
+            .map(|_| vis.lo - 1.0 + (hi - vis.lo + 2.0) * Vec3A::new(next(), next(), next()))
+            .collect();
+        // The grid's faces, a hair either side, and what no grid holds.
+        for c in [vis.lo, hi] {
+            for d in [-1e-6, 0.0, 1e-6] {
+                points.push(c + d);
+                points.push(Vec3A::new(c.x + d, 0.3, -4.0));
+            }
+        }
+        for odd in [f32::NAN, f32::INFINITY, -f32::INFINITY, -0.0, 1e30, -1e30] {
+            points.push(Vec3A::new(odd, 0.3, -4.0));
+            points.push(Vec3A::new(0.1, 0.3, odd));
+        }
+        let mut inside = 0;
+        for x in points {
+            let general = vis.cell_of((x - vis.lo) * vis.inv_side);
+            assert_eq!(vis.cell(x), general, "{x}");
+            inside += general.is_some() as u32;
+        }
+        assert!(inside > 5_000, "{inside} points inside");
     }
 
     #[test]
