@@ -33,6 +33,8 @@ struct Rect {
     len_u: f32,
     len_v: f32,
     area: f32,
+    /// How far off its plane a point must be to be served: 1e-6 × (`len_u` + `len_v`).
+    margin: f32,
 }
 
 impl Rect {
@@ -51,13 +53,20 @@ impl Rect {
             len_u,
             len_v,
             area: u.cross(v).length(),
+            margin: 1e-6 * (len_u + len_v),
         }
     }
 
     /// Whether `o` is on the room side (off the plane by more than a rounding margin).
     #[inline]
     fn serves(&self, o: Vec3A) -> bool {
-        (o - self.corner).dot(self.n) > 1e-6 * (self.len_u + self.len_v)
+        self.height(o) > self.margin
+    }
+
+    /// How far `o` is off the portal's plane, on the room side.
+    #[inline]
+    fn height(&self, o: Vec3A) -> f32 {
+        (o - self.corner).dot(self.n)
     }
 
     /// The choice weight at `o` (served): area × cosine / distance² at the centre, the
@@ -74,11 +83,17 @@ impl Rect {
     /// along unit `d` crosses the portal, or `None` when it misses it.
     #[inline]
     fn crossing(&self, o: Vec3A, d: Vec3A) -> Option<f32> {
+        self.crossing_at(self.height(o), o, d)
+    }
+
+    /// [`Rect::crossing`] with `o`'s height `h` known.
+    #[inline]
+    fn crossing_at(&self, h: f32, o: Vec3A, d: Vec3A) -> Option<f32> {
         let cos = -d.dot(self.n);
         if cos <= 0.0 {
             return None;
         }
-        let t = (o - self.corner).dot(self.n) / cos;
+        let t = h / cos;
         let q = o + d * t - self.corner;
         let (a, b) = (q.dot(self.ux), q.dot(self.vy));
         ((0.0..=self.len_u).contains(&a) && (0.0..=self.len_v).contains(&b))
@@ -143,11 +158,15 @@ impl Portals {
     #[inline]
     pub fn lets_through(&self, o: Vec3A, wi: Vec3A) -> Option<bool> {
         let mut served = false;
-        for r in self.rects.iter().filter(|r| r.serves(o)) {
-            if r.crossing(o, wi).is_some() {
-                return Some(true);
+        for r in &self.rects {
+            // `serves`, its height kept for the crossing.
+            let h = r.height(o);
+            if h > r.margin {
+                if r.crossing_at(h, o, wi).is_some() {
+                    return Some(true);
+                }
+                served = true;
             }
-            served = true;
         }
         served.then_some(false)
     }
