@@ -43,22 +43,23 @@ impl PixelFilter {
     /// The filter ready to weigh samples, with what its weights share worked out once (the
     /// Gaussian's table): what a film keeps while it splats samples.
     pub fn weights(&self) -> FilterWeights {
-        let table = match *self {
-            PixelFilter::Gaussian { radius, .. } if radius > 0.0 => (0..=GAUSSIAN_TABLE)
-                .map(|k| {
-                    let x = radius * k as f32 / GAUSSIAN_TABLE as f32;
-                    if k == GAUSSIAN_TABLE {
-                        0.0
-                    } else {
-                        self.eval(x)
-                    }
-                })
-                .collect(),
-            _ => Vec::new(),
-        };
-        let scale = match *self {
-            PixelFilter::Gaussian { radius, .. } if radius > 0.0 => GAUSSIAN_TABLE as f32 / radius,
-            _ => 0.0,
+        let (table, scale) = match *self {
+            // A radius of 0 (or less) weighs nothing: a table of zeros, read at its first entry.
+            PixelFilter::Gaussian { radius, .. } => {
+                let table = (0..=GAUSSIAN_TABLE)
+                    .map(|k| match k < GAUSSIAN_TABLE && radius > 0.0 {
+                        true => self.eval(radius * k as f32 / GAUSSIAN_TABLE as f32),
+                        false => 0.0,
+                    })
+                    .collect();
+                let scale = if radius > 0.0 {
+                    GAUSSIAN_TABLE as f32 / radius
+                } else {
+                    0.0
+                };
+                (table, scale)
+            }
+            _ => (Vec::new(), 0.0),
         };
         FilterWeights {
             filter: *self,
@@ -89,9 +90,9 @@ const GAUSSIAN_TABLE: usize = 1024;
 pub struct FilterWeights {
     filter: PixelFilter,
     /// The Gaussian's [`PixelFilter::eval`] at `GAUSSIAN_TABLE + 1` evenly spaced |x| in
-    /// [0, radius], the last 0 (empty for the other filters).
+    /// [0, radius], the last 0 (all 0 for a radius of 0; empty for the other filters).
     table: Vec<f32>,
-    /// `GAUSSIAN_TABLE / radius`: |x| in table intervals.
+    /// `GAUSSIAN_TABLE / radius`: |x| in table intervals (0 for a radius of 0).
     scale: f32,
 }
 
@@ -105,8 +106,8 @@ impl FilterWeights {
             PixelFilter::Tent { radius } => tent_weight(radius, x),
             PixelFilter::Gaussian { .. } => {
                 let t = x.abs() * self.scale;
-                // Also 0 for a NaN offset and for a filter of radius 0 (an empty table).
-                if t.is_nan() || t >= GAUSSIAN_TABLE as f32 || self.table.is_empty() {
+                // Also 0 for a NaN offset.
+                if t.is_nan() || t >= GAUSSIAN_TABLE as f32 {
                     return 0.0;
                 }
                 // t is in [0, GAUSSIAN_TABLE): k + 1 is in the table. Through i32: a float's
@@ -189,6 +190,15 @@ mod tests {
         for x in [-2.0, -0.7, 0.0, 0.2, 1.49] {
             assert_eq!(tent.weights().eval(x), tent.eval(x));
             assert_eq!(PixelFilter::Box.weights().eval(x), PixelFilter::Box.eval(x));
+        }
+        // A Gaussian of radius 0 weighs nothing, as its definition does.
+        let none = PixelFilter::Gaussian {
+            stddev: 0.5,
+            radius: 0.0,
+        };
+        for x in [-1.0, 0.0, 0.3, f32::NAN] {
+            assert_eq!(none.weights().eval(x), 0.0);
+            assert_eq!(none.eval(x), 0.0);
         }
     }
 }

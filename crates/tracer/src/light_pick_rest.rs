@@ -185,7 +185,11 @@ mod tests {
             f = (f * 97.31 + 0.2137).fract();
             f * 2.0 - 1.0
         };
-        let mut cases = 0;
+        let DeltaLight::Directional { direction, .. } = lights[0] else {
+            unreachable!()
+        };
+        let sun = -direction;
+        let (mut cases, mut blocked, mut through) = (0, 0, 0);
         for i in 0..2000 {
             let x = Vec3A::new(next() * 4.0, next() * 3.0 + 1.0, next() * 4.0 - 3.0);
             let x = if i == 0 {
@@ -204,6 +208,13 @@ mod tests {
                 ] {
                     let mut w = [f32::NAN; 8];
                     rests.importances(x, n, behind, &mut w);
+                    if let Some(at) = behind {
+                        // The lit sun, held back where its direction crosses no portal.
+                        blocked +=
+                            (w[0] > 0.0 && at.portals.lets_through(x, sun) == Some(false)) as u32;
+                        through +=
+                            (w[0] > 0.0 && at.portals.lets_through(x, sun) == Some(true)) as u32;
+                    }
                     for (k, b) in picker.bounds.iter().enumerate() {
                         let one = unit_importance(b, x, n, behind);
                         assert_eq!(w[k].to_bits(), one.to_bits(), "unit {k} at {x} n {n:?}");
@@ -213,5 +224,10 @@ mod tests {
             }
         }
         assert_eq!(cases, 20_000);
+        // Both portal cases of the sun's weight were compared, not only the unserved one.
+        assert!(
+            blocked > 100 && through > 100,
+            "{blocked} blocked, {through} through"
+        );
     }
 }
