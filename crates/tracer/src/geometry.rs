@@ -217,6 +217,11 @@ impl Geometry {
         self.triangles
     }
 
+    /// The materials of the placed instances (with repeats): what a ray can hit.
+    pub fn materials_in_use(&self) -> impl Iterator<Item = u32> + '_ {
+        self.instances.iter().map(|i| i.material)
+    }
+
     /// The material at `hit` (the [`SurfaceInteraction::material`] of its interaction).
     #[inline]
     pub fn material_of(&self, hit: &Hit) -> u32 {

@@ -339,15 +339,6 @@ impl Materials {
         }
     }
 
-    /// True when some material may let shadow rays through (`shadow.rs`): a thin pane, or,
-    /// when `cutouts` pass them, a mask or a null surface.
-    pub fn has_see_through(&self, cutouts: bool) -> bool {
-        self.entries
-            .iter()
-            .chain(&self.nodes)
-            .any(|e| Leaf(e).may_pass(cutouts))
-    }
-
     /// Index of the error material (for instances without one).
     pub fn error_index(&self) -> u32 {
         self.entries.len() as u32 - 1

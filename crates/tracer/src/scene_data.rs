@@ -48,7 +48,12 @@ impl SceneData {
             .with_portals(&scene.portals);
         let parameterisation = materials.read_parameterisation();
         let cutouts_pass = scene.cutout_shadows == CutoutShadows::Transmit;
-        let see_through = materials.has_see_through(cutouts_pass);
+        // Only materials that something wears: a pane defined but placed nowhere must not
+        // send every shadow ray down the see-through walk (the suite's interior without its
+        // panes did).
+        let see_through = geometry
+            .materials_in_use()
+            .any(|m| materials.may_pass(m, cutouts_pass));
         let mut data = SceneData {
             parameterisation,
             geometry,

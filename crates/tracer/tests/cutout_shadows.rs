@@ -327,3 +327,23 @@ fn cut_out_shadows_are_the_same_bits_on_any_thread_count() {
     assert!(mean(&one) > 0.0);
     assert_eq!(one.rgb, on(3).rgb);
 }
+
+/// A see-through material that no shape wears does not make the scene see-through: its
+/// shadow rays stay the any-hit test (and pair with the path's next ray), and the image is
+/// that of the scene without the material, bit for bit. Placed on the cover, it is.
+#[test]
+fn unplaced_pane_leaves_shadow_rays_opaque() {
+    let open = scene(OPEN, Lamp::Area, CutoutShadows::Transmit);
+    let mut unplaced = open.clone();
+    unplaced.add_material(Material {
+        name: "unused pane".into(),
+        bsdf: pane(),
+        emission: Rgb::ZERO,
+    });
+    assert!(!SceneData::new(&open).see_through);
+    assert!(!SceneData::new(&unplaced).see_through);
+    assert!(SceneData::new(&scene(Some(pane()), Lamp::Area, CutoutShadows::Transmit)).see_through);
+    let (a, b) = (shoot(&open, 4, 4), shoot(&unplaced, 4, 4));
+    assert!(mean(&a) > 0.0);
+    assert_eq!(a.rgb, b.rgb);
+}
