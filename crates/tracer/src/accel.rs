@@ -338,6 +338,29 @@ impl Accel {
         !blocked
     }
 
+    /// Calls `visit` with every triangle `ray` hits within its (tmin, tmax), in walk order
+    /// (not by distance), until it returns true; returns whether one did. A triangle is
+    /// reported once per walk.
+    #[inline(always)]
+    pub fn each_hit_with(
+        &self,
+        test: impl NodeTest,
+        ray: &Ray,
+        state: &mut Traversal,
+        visit: &mut dyn FnMut(SlotHit) -> bool,
+    ) -> bool {
+        let mut stopped = false;
+        let shear = Shear::new(ray);
+        let leaves = EachLeaves {
+            packs: &self.packs,
+            shear: &shear,
+            visit,
+            stopped: &mut stopped,
+        };
+        self.walk(test, ray, state, leaves);
+        stopped
+    }
+
     /// Barycentric coordinates (weights of vertices 1 and 2) of `ray`'s hit with slot `slot`.
     #[inline]
     pub fn barycentric(&self, slot: u32, ray: &Ray) -> Vec2 {
@@ -416,6 +439,39 @@ impl Leaves for BlockingLeaves<'_> {
             self.packs[block as usize].any(r, self.shear, lanes)
         });
         *self.blocked
+    }
+}
+
+/// The leaf test of an every-hit walk: each hit triangle goes to `visit`, which may stop
+/// the walk; the ray is never shortened.
+struct EachLeaves<'a> {
+    packs: &'a [Tri4],
+    shear: &'a Shear,
+    visit: &'a mut dyn FnMut(SlotHit) -> bool,
+    stopped: &'a mut bool,
+}
+
+impl Leaves for EachLeaves<'_> {
+    #[inline(always)]
+    fn visit(&mut self, base: u32, mask: u32, r: &mut Ray) -> bool {
+        *self.stopped = for_blocks(base, mask, |block, lanes| {
+            let (mut hit, dist) = self.packs[block as usize].hits(r, self.shear, lanes);
+            while hit != 0 {
+                let lane = 31 - hit.leading_zeros();
+                hit &= !(1 << lane);
+                let t = dist[lane as usize];
+                if t < r.tmax
+                    && (self.visit)(SlotHit {
+                        t,
+                        slot: block * 4 + lane,
+                    })
+                {
+                    return true;
+                }
+            }
+            false
+        });
+        *self.stopped
     }
 }
 

@@ -68,6 +68,8 @@ pub struct RayScratch {
     bottom: Traversal,
     /// The shadow ray's, while it is walked together with a path's next ray.
     shadow: Traversal,
+    /// The see-through surfaces a shadow ray crosses (`shadow.rs`).
+    pub(crate) crossings: Vec<Hit>,
 }
 
 /// A ray's closest hit: distance, instance, the mesh's triangle and the BVH slot it sits in.
@@ -204,6 +206,7 @@ impl Geometry {
             top: Traversal::default(),
             bottom: Traversal::default(),
             shadow: Traversal::default(),
+            crossings: Vec::new(),
         }
     }
 

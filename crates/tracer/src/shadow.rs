@@ -24,8 +24,8 @@
 //! test they always were, and their images are bit-identical.
 #[cfg(doc)]
 use crate::bsdf::Bsdf;
-use crate::geometry::RayScratch;
-use crate::integrator::{offset, visible};
+use crate::geometry::{Hit, RayScratch};
+use crate::integrator::visible;
 use crate::scene_data::SceneData;
 use crate::vertex::Vertex;
 #[cfg(doc)]
@@ -50,45 +50,61 @@ pub fn shadow_transmittance(
             Vec3A::ZERO
         };
     }
-    let tmax = shadow_tmax(dist);
-    let mut tr = Vec3A::ONE;
-    let mut o = from;
-    // At most this many see-through surfaces on one segment: beyond, the light counts as
-    // blocked.
-    for _ in 0..64 {
-        let left = tmax - (o - from).dot(wi);
-        if left <= 0.0 {
-            return tr;
+    // One walk over every surface on the segment: the first opaque one ends it (the light is
+    // blocked, whatever else lies on the way); the see-through ones are kept and their
+    // transmittances multiplied afterwards, nearest first.
+    let mut crossings = std::mem::take(&mut scratch.crossings);
+    crossings.clear();
+    let geometry = &scene.geometry;
+    let blocked = geometry.each_hit(scratch, from, wi, shadow_tmax(dist), &mut |hit| {
+        if !scene
+            .materials
+            .may_pass(geometry.material_of(&hit), scene.cutouts_pass)
+            || crossings.len() == MAX_CROSSINGS
+        {
+            return true;
         }
-        let Some(hit) = scene.geometry.intersect_with(scratch, o, wi, left) else {
-            return tr;
-        };
-        // Most hits are opaque (a wall between the point and the light), and an opaque
-        // material passes nothing, which needs no interaction to know.
-        let interaction = || {
-            scene
-                .geometry
-                .interaction(o, wi, &hit, scene.parameterisation)
-        };
-        let material = scene.geometry.material_of(&hit);
-        let mut seen = None;
-        tr *= if scene.materials.may_pass(material, scene.cutouts_pass) {
-            let si = interaction();
-            let t = surface_transmittance(scene, &si, -wi);
-            seen = Some(si);
-            t
-        } else {
-            Vec3A::ZERO
-        };
+        crossings.push(hit);
+        false
+    });
+    let tr = if blocked {
+        Vec3A::ZERO
+    } else {
+        transmittance(scene, from, wi, &mut crossings)
+    };
+    scratch.crossings = crossings;
+    tr
+}
+
+/// At most this many see-through surfaces on one segment: beyond, the light counts as
+/// blocked.
+const MAX_CROSSINGS: usize = 64;
+
+/// The product of the straight-through transmittances at `crossings` (hits along `wi` from
+/// `from`, in any order), nearest first. Two hits of one instance at the same distance are one
+/// crossing (a ray through the edge two triangles share meets both).
+fn transmittance(scene: &SceneData, from: Vec3A, wi: Vec3A, crossings: &mut [Hit]) -> Vec3A {
+    crossings.sort_unstable_by(|a, b| {
+        a.t.total_cmp(&b.t)
+            .then(a.instance.cmp(&b.instance))
+            .then(a.prim.cmp(&b.prim))
+    });
+    let mut tr = Vec3A::ONE;
+    let mut last: Option<&Hit> = None;
+    for hit in crossings.iter() {
+        if last.is_some_and(|l| l.t == hit.t && l.instance == hit.instance) {
+            continue;
+        }
+        last = Some(hit);
+        let si = scene
+            .geometry
+            .interaction(from, wi, hit, scene.parameterisation);
+        tr *= surface_transmittance(scene, &si, -wi);
         if tr.max_element() <= 0.0 {
             return Vec3A::ZERO;
         }
-        let si = seen.unwrap_or_else(interaction);
-        // On past the surface, just behind it as seen from the shading point.
-        let ng = if si.ng.dot(wi) < 0.0 { si.ng } else { -si.ng };
-        o = offset(si.p, -ng);
     }
-    Vec3A::ZERO
+    tr
 }
 
 /// Where a shadow ray to a light sample at distance `dist` (∞ for the environment and the

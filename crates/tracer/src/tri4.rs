@@ -221,6 +221,7 @@ impl Tri4 {
 mod tests {
     use super::*;
     use crate::accel::{Accel, InputTri};
+    use crate::isa::Baseline;
     use crate::sampler::mix64;
     use crate::triangle::tests::{unit, v3};
     use crate::triangle::{intersect, normal_and_area};
@@ -467,7 +468,7 @@ mod tests {
         assert_eq!(accel.triangle_count(), input.len());
         let scalar: Vec<Triangle> = input.iter().map(|t| t.triangle()).collect();
         let mut state = Traversal::default();
-        let mut hits = 0;
+        let (mut hits, mut several) = (0, 0);
         for k in 0..4000u64 {
             let r = mix64(k);
             let o = v3(r, 6.0) + Vec3A::Y * 4.0;
@@ -495,8 +496,29 @@ mod tests {
                 assert_eq!(accel.vertices(h.slot), input[prim].v);
             }
             assert_eq!(accel.unblocked(&ray, &mut state), got.is_none());
+            // Every hit once (the see-through shadow rays' walk), and a stop when asked.
+            let mut every = Vec::new();
+            accel.each_hit_with(Baseline, &ray, &mut state, &mut |h| {
+                every.push((accel.info[h.slot as usize].prim, h.t.to_bits()));
+                false
+            });
+            every.sort_unstable();
+            let want: Vec<(u32, u32)> = (0..scalar.len() as u32)
+                .map(|i| (i, one(&scalar[i as usize], &ray)))
+                .filter(|&(_, t)| t < tmax)
+                .map(|(i, t)| (i, t.to_bits()))
+                .collect();
+            assert_eq!(every, want);
+            several += (want.len() > 1) as u32;
+            let mut seen = 0;
+            let stopped = accel.each_hit_with(Baseline, &ray, &mut state, &mut |_| {
+                seen += 1;
+                true
+            });
+            assert_eq!((stopped, seen), (got.is_some(), got.is_some() as u32));
         }
         assert!(hits > 2000, "{hits}");
+        assert!(several > 200, "{several}");
     }
 
     #[test]

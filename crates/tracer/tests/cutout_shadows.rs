@@ -11,10 +11,10 @@ mod common;
 use common::settings;
 use eyeadapt_scene::{
     Bitmap, Bsdf, CutoutShadows, FilterType, Image, Light, Material, Param, Rgb, Scene, Texture,
-    WrapMode, quad_mesh,
+    Transform, WrapMode, quad_mesh,
 };
 use eyeadapt_tracer::{EyeSettings, Frame, PathSettings, SceneData, View, eye_sensor, render};
-use glam::{Affine2, Vec3};
+use glam::{Affine2, Mat4, Vec3};
 use std::sync::Arc;
 
 const OPEN: Option<Bsdf> = None;
@@ -346,4 +346,71 @@ fn unplaced_pane_leaves_shadow_rays_opaque() {
     let (a, b) = (shoot(&open, 4, 4), shoot(&unplaced, 4, 4));
     assert!(mean(&a) > 0.0);
     assert_eq!(a.rgb, b.rgb);
+}
+
+/// `s` with one more cover over the whole floor at height `z`.
+fn with_sheet(mut s: Scene, bsdf: Bsdf, z: f32) -> Scene {
+    let m = s.add_material(Material {
+        name: format!("sheet at {z}"),
+        bsdf,
+        emission: Rgb::ZERO,
+    });
+    s.add_world_mesh(
+        quad_mesh(
+            Vec3::new(-4.0, -4.0, z),
+            Vec3::new(8.0, 0.0, 0.0),
+            Vec3::new(0.0, 8.0, 0.0),
+        ),
+        Some(m),
+    );
+    s
+}
+
+/// Shadow rays cross every see-through surface on their segment once, whatever the order
+/// the structure meets them in: two masks pass the product of their shares, and an opaque
+/// sheet 0.1 mm behind a mask (nearer than any offset past a crossing) blocks the light.
+#[test]
+fn stacked_covers_multiply_and_an_opaque_sheet_just_behind_a_mask_blocks() {
+    let open = shoot(&scene(OPEN, Lamp::Point, CutoutShadows::Transmit), 4, 2);
+    let one = scene(
+        Some(mask(Param::Const(0.3))),
+        Lamp::Point,
+        CutoutShadows::Transmit,
+    );
+    let two = with_sheet(one.clone(), mask(Param::Const(0.5)), 1.5);
+    assert_all(
+        &ratios(&shoot(&two, 4, 2), &open),
+        0.35,
+        "masks 0.3 and 0.5",
+    );
+    let three = with_sheet(two, pane(), 1.25);
+    let behind = with_sheet(one, black(), 1.0001);
+    assert_eq!(
+        mean(&shoot(&behind, 4, 2)),
+        0.0,
+        "opaque sheet behind a mask"
+    );
+    // A pane between the masks: its Fresnel transmittance at each pixel's angle, below 1.
+    let r = ratios(&shoot(&three, 4, 2), &open);
+    assert!(r.iter().all(|&x| x > 0.25 && x < 0.35), "{r:?}");
+    // The two masks as one mesh placed twice (two levels): the same product.
+    let mut placed = scene(OPEN, Lamp::Point, CutoutShadows::Transmit);
+    let sheet = placed.add_mesh(quad_mesh(
+        Vec3::new(-4.0, -4.0, 0.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 8.0, 0.0),
+    ));
+    for (opacity, z) in [(0.3, 1.0), (0.5, 1.5)] {
+        let m = placed.add_material(Material {
+            name: format!("mask {opacity}"),
+            bsdf: mask(Param::Const(opacity)),
+            emission: Rgb::ZERO,
+        });
+        let to_world = Transform {
+            matrix: Mat4::from_translation(Vec3::Z * z),
+        };
+        placed.add_instance(sheet, Some(m), to_world);
+    }
+    assert!(SceneData::new(&placed).geometry.is_two_level());
+    assert_all(&ratios(&shoot(&placed, 4, 2), &open), 0.35, "placed masks");
 }

@@ -130,6 +130,83 @@ impl Geometry {
         }
     }
 
+    /// Calls `visit` with every surface hit along `dir` (unit) from `origin` within
+    /// (0, tmax), in no particular order, until it returns true; returns whether one did
+    /// (the see-through shadow rays of `shadow.rs`: any opaque hit ends them).
+    pub fn each_hit(
+        &self,
+        scratch: &mut RayScratch,
+        origin: Vec3A,
+        dir: Vec3A,
+        tmax: f32,
+        visit: &mut dyn FnMut(Hit) -> bool,
+    ) -> bool {
+        let ray = Ray::new(origin, dir, 0.0, tmax);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = crate::isa::wide() {
+            // SAFETY: an `Avx2` exists only where the CPU has AVX2.
+            return unsafe { self.each_hit_avx2(avx2, scratch, ray, visit) };
+        }
+        self.each_hit_in(Baseline, scratch, ray, visit)
+    }
+
+    /// [`Geometry::each_hit_in`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn each_hit_avx2(
+        &self,
+        avx2: Avx2,
+        scratch: &mut RayScratch,
+        ray: Ray,
+        visit: &mut dyn FnMut(Hit) -> bool,
+    ) -> bool {
+        self.each_hit_in(avx2, scratch, ray, visit)
+    }
+
+    #[inline(always)]
+    fn each_hit_in(
+        &self,
+        test: impl NodeTest,
+        scratch: &mut RayScratch,
+        ray: Ray,
+        visit: &mut dyn FnMut(Hit) -> bool,
+    ) -> bool {
+        match &self.levels {
+            Levels::Flat(a) => a.each_hit_with(test, &ray, &mut scratch.bottom, &mut |h| {
+                visit(flat_hit(a, h))
+            }),
+            Levels::Two {
+                top,
+                top_instance,
+                meshes,
+            } => {
+                let bottom = &mut scratch.bottom;
+                !crate::traverse::unoccluded(top, test, ray, &mut scratch.top, |k, r| {
+                    let instance = top_instance[k as usize];
+                    let inst = &self.instances[instance as usize];
+                    let mesh = &meshes[inst.mesh as usize];
+                    let local = object_ray(inst, r);
+                    let stopped = mesh.each_hit_with(test, &local, bottom, &mut |h| {
+                        visit(Hit {
+                            t: h.t,
+                            instance,
+                            prim: mesh.info[h.slot as usize].prim,
+                            slot: h.slot,
+                        })
+                    });
+                    if stopped {
+                        f32::NEG_INFINITY
+                    } else {
+                        f32::INFINITY
+                    }
+                })
+            }
+        }
+    }
+
     /// [`Geometry::intersect_with`] of `ray` (origin, direction, tmax) and
     /// [`Geometry::unoccluded_with`] of `shadow`, the two walked together where there is one
     /// level ([`crate::traverse_pair`]); the same answers as the two calls.
