@@ -22,10 +22,10 @@
 //!
 //! Scenes without any such surface take none of this code: their shadow rays are the any-hit
 //! test they always were, and their images are bit-identical.
-#[cfg(doc)]
 use crate::bsdf::Bsdf;
 use crate::geometry::{Hit, RayScratch};
 use crate::integrator::visible;
+use crate::microfacet::fresnel_refract;
 use crate::scene_data::SceneData;
 use crate::vertex::Vertex;
 #[cfg(doc)]
@@ -127,6 +127,25 @@ fn surface_transmittance(
     si: &crate::interaction::SurfaceInteraction,
     wo: Vec3A,
 ) -> Vec3A {
+    let front = si.ng.dot(wo) > 0.0;
+    if let Some(&Bsdf::ThinDielectric { eta, t, .. }) = scene.materials.fixed(si.material, front) {
+        // A plain pane (the usual window): what its vertex's `straight_through` gives, bit for
+        // bit, without building the vertex (its shading normal on the viewer's side, as
+        // `Vertex::with_leaf` turns it, and the pane's share 1 − 2R/(1 + R)).
+        let ng = if front { si.ng } else { -si.ng };
+        let ns = if si.ns.dot(ng) < 0.0 { -si.ns } else { si.ns };
+        let f = fresnel_refract(wo.dot(ns), eta).0;
+        return t * (1.0 - 2.0 * f / (1.0 + f));
+    }
+    leaves_transmittance(scene, si, wo)
+}
+
+/// [`surface_transmittance`] of any material: each leaf's vertex built and asked.
+fn leaves_transmittance(
+    scene: &SceneData,
+    si: &crate::interaction::SurfaceInteraction,
+    wo: Vec3A,
+) -> Vec3A {
     let mut t = Vec3A::ZERO;
     scene.materials.leaves(si, |leaf, p| {
         // Opaque leaves pass nothing; only the others need their BSDF built.
@@ -135,4 +154,62 @@ fn surface_transmittance(
         }
     });
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::mix64;
+    use eyeadapt_scene::{Material, Rgb, Scene, quad_mesh};
+    use glam::Vec3;
+
+    /// A plain pane's shortcut gives what its vertex gives, bit for bit, from either side and
+    /// at every angle.
+    #[test]
+    fn a_plain_panes_shortcut_is_its_vertex_bit_for_bit() {
+        let mut s = Scene::default();
+        let m = s.add_material(Material {
+            name: "pane".into(),
+            bsdf: eyeadapt_scene::Bsdf::ThinDielectric {
+                eta: 1.5,
+                specular_reflectance: Rgb::ONE,
+                specular_transmittance: Rgb::new(0.9, 0.8, 0.7),
+            },
+            emission: Rgb::ZERO,
+        });
+        let (corner, u, v) = (
+            Vec3::new(-1.0, -1.0, 0.3),
+            Vec3::new(2.0, 0.2, 0.1),
+            Vec3::Y * 2.0,
+        );
+        s.add_world_mesh(quad_mesh(corner, u, v), Some(m));
+        let scene = SceneData::new(&s);
+        assert!(scene.see_through);
+        let unit = |r: u64| (r >> 40) as f32 / (1u64 << 24) as f32;
+        let mut scratch = scene.geometry.scratch();
+        for k in 0..2000u64 {
+            let r = mix64(k);
+            let (a, b) = (0.1 + 0.8 * unit(r), 0.1 + 0.8 * unit(mix64(r)));
+            let target = Vec3A::from(corner + u * a + v * b);
+            let side = if k % 2 == 0 { 1.0 } else { -1.0 };
+            let o = Vec3A::new(unit(r ^ 7) * 4.0 - 2.0, unit(r ^ 9) * 4.0 - 2.0, 2.0 * side);
+            let wi = (target - o).normalize();
+            let hit = scene
+                .geometry
+                .intersect_with(&mut scratch, o, wi, f32::INFINITY)
+                .expect("the ray crosses the pane");
+            let si = scene
+                .geometry
+                .interaction(o, wi, &hit, scene.parameterisation);
+            let (fast, full) = (
+                surface_transmittance(&scene, &si, -wi),
+                leaves_transmittance(&scene, &si, -wi),
+            );
+            assert!(fast.max_element() > 0.0 && fast.max_element() < 0.9);
+            assert_eq!(
+                fast.to_array().map(f32::to_bits),
+                full.to_array().map(f32::to_bits)
+            );
+        }
+    }
 }
