@@ -33,7 +33,7 @@ impl Geometry {
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     unsafe fn intersect_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> Option<Hit> {
         self.intersect_in(avx2, scratch, ray)
     }
@@ -101,7 +101,7 @@ impl Geometry {
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     unsafe fn unoccluded_avx2(&self, avx2: Avx2, scratch: &mut RayScratch, ray: Ray) -> bool {
         self.unoccluded_in(avx2, scratch, ray)
     }
@@ -155,7 +155,7 @@ impl Geometry {
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     unsafe fn each_hit_avx2(
         &self,
         avx2: Avx2,
@@ -231,7 +231,7 @@ impl Geometry {
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     unsafe fn intersect_and_unoccluded_avx2(
         &self,
         avx2: Avx2,
