@@ -1,12 +1,15 @@
 //! `eyeadapt bench --bvh-triangles N`: how the acceleration structure scales (issue 10, goal 4).
 //! Builds the BVH of a generated mesh (a displaced terrain of N triangles) with the
 //! renderer's own `Accel::build_with` (obvhs plus the copy into BVH order), and reports build
-//! time, memory and closest-hit and shadow-ray throughput. The last line, `bvh-bench: key=value
-//! …`, is for scripts (`scripts/bench/bvh-scale.sh`).
+//! time, memory and closest-hit and shadow-ray throughput through the renderer's own queries
+//! (the AVX2 node test where the CPU has it, one traversal state reused per worker; before
+//! 2026-12-05, the baseline node test and a fresh state per ray). The last line,
+//! `bvh-bench: key=value …`, is for scripts (`scripts/bench/bvh-scale.sh`,
+//! `scripts/bench/rays-vs-mitsuba.sh`).
 use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_tracer::{
-    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, build_params, hash_key, mix64,
+    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, Traversal, build_params, hash_key, mix64,
 };
 use glam::Vec3A;
 use rayon::prelude::*;
@@ -116,17 +119,27 @@ impl RaySet {
 
 const RAYS: u64 = 1 << 20;
 
-/// Times `hits(i)` for i in 0..RAYS in parallel and counts the rays it reports as hits.
-fn ray_set(hits: impl Fn(u64) -> bool + Sync) -> RaySet {
+/// The ray set made by `ray(i)` for i in 0..RAYS (origin, direction), made before the clock
+/// starts, so that only the queries are timed (as Mitsuba's, `rays-vs-mitsuba.sh`, are).
+fn make_rays(ray: impl Fn(u64) -> (Vec3A, Vec3A) + Sync + Send) -> Vec<(Vec3A, Vec3A)> {
+    (0..RAYS).into_par_iter().map(ray).collect()
+}
+
+/// Times `hits(state, ray)` over `rays` in parallel, each worker reusing one traversal state
+/// as the renderer does, and counts the rays it reports as hits.
+fn ray_set(
+    rays: &[(Vec3A, Vec3A)],
+    hits: impl Fn(&mut Traversal, (Vec3A, Vec3A)) -> bool + Sync,
+) -> RaySet {
     let (seconds, count) = timed(|| {
-        (0..RAYS as usize)
-            .into_par_iter()
+        rays.par_iter()
             .with_min_len(1024)
-            .filter(|&i| hits(i as u64))
+            .map_init(Traversal::default, |state, &r| hits(state, r))
+            .filter(|&hit| hit)
             .count()
     });
     RaySet {
-        rays: RAYS,
+        rays: rays.len() as u64,
         seconds,
         count,
     }
@@ -137,6 +150,11 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     const SIDE: u64 = 1 << 10;
     let key = hash_key(&[0xB7B, n as u64]);
     let (lo, hi) = (accel.bounds_min, accel.bounds_max);
+    let closest = |state: &mut Traversal, (o, d): (Vec3A, Vec3A)| {
+        accel
+            .intersect_reusing(state, o, d, f32::INFINITY)
+            .is_some()
+    };
 
     // Primary-like: a 1024² pinhole camera outside the mesh, above and in front, looking at
     // its centre, in row order like a renderer's scanlines (coherent rays).
@@ -145,33 +163,42 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     let right = fwd.cross(Vec3A::Y).normalize();
     let up = right.cross(fwd);
     let half = libm::tanf(15.0f32.to_radians()); // a 30° field of view: the mesh fills most of it
-    let primary = ray_set(|i| {
+    let rays = make_rays(|i| {
         let px = ((i % SIDE) as f32 + 0.5) / SIDE as f32 * 2.0 - 1.0;
         let py = 1.0 - ((i / SIDE) as f32 + 0.5) / SIDE as f32 * 2.0;
-        let d = (fwd + right * (px * half) + up * (py * half)).normalize();
-        accel.intersect(eye, d, f32::INFINITY).is_some()
+        (
+            eye,
+            (fwd + right * (px * half) + up * (py * half)).normalize(),
+        )
     });
+    let primary = ray_set(&rays, closest);
 
     // Inside: uniform origins in the mesh's bounds, uniform directions, like the bounces of a
     // path tracer (incoherent rays).
-    let inside = ray_set(|i| {
+    let rays = make_rays(|i| {
         let r = mix64(key ^ i);
         let (u, v) = unit2(r);
         let w = unit2(mix64(r ^ 1)).0;
-        let o = lo + (hi - lo) * Vec3A::new(u, v, w);
-        accel
-            .intersect(o, direction(mix64(r ^ 2)), f32::INFINITY)
-            .is_some()
+        (
+            lo + (hi - lo) * Vec3A::new(u, v, w),
+            direction(mix64(r ^ 2)),
+        )
     });
+    let inside = ray_set(&rays, closest);
 
     // Shadow: segments of length 0.5 from points a little above the terrain, in uniform
     // directions (next-event estimation's visibility test).
-    let shadow = ray_set(|i| {
+    let rays = make_rays(|i| {
         let r = mix64(key ^ (i + RAYS));
         let (u, v) = unit2(r);
         let (x, z) = (u * 2.0 - 1.0, v * 2.0 - 1.0);
-        let o = Vec3A::new(x, height(x, z) + 0.02, z);
-        accel.unoccluded(o, direction(mix64(r ^ 3)), 0.5)
+        (
+            Vec3A::new(x, height(x, z) + 0.02, z),
+            direction(mix64(r ^ 3)),
+        )
+    });
+    let shadow = ray_set(&rays, |state, (o, d)| {
+        accel.unoccluded_reusing(state, o, d, 0.5)
     });
     [primary, inside, shadow]
 }
@@ -317,14 +344,18 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
         "bvh-bench: triangles={tris} threads={threads} preset={preset} runs={} build_s={build:.6} \
          build_min_s={build_min:.6} obvhs_s={obvhs:.6} mtris_per_s={:.3} memory_bytes_per_mtri={:.0} peak_rss_bytes={rss_peak:.0} \
          build_rss_bytes_per_mtri={:.0} primary_mrays_per_s={:.3} inside_mrays_per_s={:.3} \
-         closest_mrays_per_s={closest_mrays:.3} shadow_mrays_per_s={:.3}",
+         closest_mrays_per_s={closest_mrays:.3} shadow_mrays_per_s={:.3} primary_percent={:.2} \
+         inside_percent={:.2} shadow_percent={:.2}",
         times.len(),
         tris as f64 / build / 1e6,
         mem * per_m,
         rss_build * per_m,
         primary.mrays(),
         inside.mrays(),
-        shadow.mrays()
+        shadow.mrays(),
+        primary.percent(),
+        inside.percent(),
+        shadow.percent()
     );
     Ok(())
 }

@@ -11,6 +11,7 @@
 //! the number of threads.
 
 mod accel;
+mod accel_wide;
 mod beam;
 mod bilinear;
 mod bsdf;
@@ -81,3 +82,4 @@ pub use crate::revision::RENDER_REVISION;
 pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;
 pub use obvhs::BvhBuildParams;
+pub use obvhs::cwbvh::Traversal;
