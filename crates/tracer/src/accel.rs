@@ -227,11 +227,11 @@ impl Accel {
         );
         let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
         if planes.is_empty() {
-            self.walk_two(a, b, |sel| {
+            self.walk_two(test, a, b, |sel| {
                 move |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r)
             });
         } else {
-            self.walk_two(a, b, |sel| {
+            self.walk_two(test, a, b, |sel| {
                 move |i: usize, r: &Ray, _| test.float(&planes[i], sel, r)
             });
         }
@@ -243,6 +243,7 @@ impl Accel {
     #[inline(always)]
     fn walk_two<H: Fn(usize, &Ray, u32) -> u32>(
         &self,
+        isa: impl NodeTest,
         (a, state_a, leaves_a): (&Ray, &mut Traversal, impl Leaves),
         (b, state_b, leaves_b): (&Ray, &mut Traversal, impl Leaves),
         node_test: impl Fn(&'static ChildSelect) -> H,
@@ -260,7 +261,7 @@ impl Accel {
             state: state_b,
             leaves: leaves_b,
         };
-        walk_pair(&self.bvh, a, b);
+        walk_pair(&self.bvh, isa, a, b);
     }
 
     /// The leaf test of a closest-hit walk.
@@ -299,10 +300,10 @@ impl Accel {
         let sel = ChildSelect::new(ray.direction);
         if planes.is_empty() {
             let hits = |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r);
-            walk_with(bvh, &mut { *ray }, state, hits, leaves);
+            walk_with(bvh, test, &mut { *ray }, state, hits, leaves);
         } else {
             let hits = |i: usize, r: &Ray, _| test.float(&planes[i], sel, r);
-            walk_with(bvh, &mut { *ray }, state, hits, leaves);
+            walk_with(bvh, test, &mut { *ray }, state, hits, leaves);
         }
     }
 

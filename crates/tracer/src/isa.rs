@@ -23,6 +23,9 @@ pub trait NodeTest: Copy {
     fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32;
     fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32;
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32;
+    /// The number of set bits of `byte` (below 256): the walk's count of a node's inner
+    /// children before the one it enters.
+    fn ones8(self, byte: u32) -> u32;
 }
 
 /// The x86-64 baseline's node tests (two SSE2 halves of four children).
@@ -41,6 +44,10 @@ impl NodeTest for Baseline {
     #[inline(always)]
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
         crate::traverse::node_hits(node, ray, oct_inv4)
+    }
+    #[inline(always)]
+    fn ones8(self, byte: u32) -> u32 {
+        crate::traverse::ONES[(byte & 0xff) as usize] as u32
     }
 }
 
@@ -65,6 +72,12 @@ impl NodeTest for Avx2 {
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
         // SAFETY: as above.
         unsafe { crate::traverse_avx2::node_hits(node, ray, oct_inv4) }
+    }
+    #[inline(always)]
+    fn ones8(self, byte: u32) -> u32 {
+        // One POPCNT where inlined into the ray queries compiled with it (geometry/query.rs,
+        // accel_wide.rs); the portable count elsewhere. The same number either way.
+        (byte & 0xff).count_ones()
     }
 }
 

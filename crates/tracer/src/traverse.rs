@@ -324,8 +324,9 @@ pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u3
 }
 
 /// The number of set bits of each byte: the x86-64 baseline has no POPCNT, so `count_ones`
-/// is a dozen instructions and a lookup is one.
-const ONES: [u8; 256] = {
+/// is a dozen instructions and a lookup is one ([`NodeTest::ones8`] of the baseline; the
+/// AVX2 queries, compiled with POPCNT, count with it: a shorter chain from node to node).
+pub(crate) const ONES: [u8; 256] = {
     let mut t = [0; 256];
     let mut i = 0;
     while i < 256 {
@@ -353,6 +354,7 @@ pub fn walk(
 ) {
     walk_with(
         bvh,
+        test,
         ray,
         state,
         |i, r, oct| test.meta(&bvh.nodes[i], r, oct),
@@ -381,12 +383,13 @@ impl<F: FnMut(u32, u32, &mut Ray) -> bool> Leaves for F {
 #[inline(always)]
 pub fn walk_with(
     bvh: &CwBvh,
+    isa: impl NodeTest,
     ray: &mut Ray,
     state: &mut Traversal,
     hits: impl Fn(usize, &Ray, u32) -> u32,
     mut leaves: impl Leaves,
 ) {
-    let Some(mut at) = Cursor::start(bvh, ray, state) else {
+    let Some(mut at) = Cursor::start(bvh, isa, ray, state) else {
         return;
     };
     while !at.step(bvh, ray, state, &hits, &mut leaves) {}
@@ -396,18 +399,20 @@ pub fn walk_with(
 /// leaf triangles it has still to hand over. Two cursors on two rays can be stepped in turn
 /// ([`crate::traverse_pair`]); each walks exactly as it would alone.
 #[derive(Clone, Copy)]
-pub struct Cursor {
+pub struct Cursor<T> {
     /// (first child node, child hit bits in the top byte | imask).
     nodes: UVec2,
     /// (first slot, slot bits).
     prims: UVec2,
     oct_inv4: u32,
+    /// Whose bit counts the walk uses ([`NodeTest::ones8`]).
+    isa: T,
 }
 
-impl Cursor {
+impl<T: NodeTest> Cursor<T> {
     /// A walk of `ray` from the root, `state` reset for it; `None` for an empty structure.
     #[inline(always)]
-    pub fn start(bvh: &CwBvh, ray: &Ray, state: &mut Traversal) -> Option<Cursor> {
+    pub fn start(bvh: &CwBvh, isa: T, ray: &Ray, state: &mut Traversal) -> Option<Cursor<T>> {
         if bvh.nodes.is_empty() {
             return None;
         }
@@ -416,6 +421,7 @@ impl Cursor {
             nodes: UVec2::new(0, 0x8000_0000),
             prims: UVec2::ZERO,
             oct_inv4: state.oct_inv4,
+            isa,
         })
     }
 
@@ -446,8 +452,9 @@ impl Cursor {
             }
             let slot_index = (child_bit - 24) ^ (self.oct_inv4 & 0xff);
             // The inner children before this one: imask bits below its slot (a byte).
-            let relative_index = ONES[(hits_imask & !(u32::MAX << slot_index) & 0xff) as usize];
-            let relative_index = relative_index as u32;
+            let relative_index = self
+                .isa
+                .ones8(hits_imask & !(u32::MAX << slot_index) & 0xff);
             let index = (self.nodes.x + relative_index) as usize;
             let node = &bvh.nodes[index];
             let hit_mask = hits(index, ray, self.oct_inv4);

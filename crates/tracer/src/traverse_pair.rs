@@ -8,6 +8,7 @@
 //!
 //! Each walk takes exactly the steps it takes alone ([`Cursor::step`]), with its own ray,
 //! stack and leaf test, so the results are those of two separate walks, bit for bit.
+use crate::isa::NodeTest;
 use crate::traverse::{Cursor, Leaves};
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
@@ -27,12 +28,12 @@ where
     L: Leaves,
 {
     #[inline(always)]
-    fn step(&mut self, bvh: &CwBvh, at: &mut Cursor) -> bool {
+    fn step<T: NodeTest>(&mut self, bvh: &CwBvh, at: &mut Cursor<T>) -> bool {
         at.step(bvh, self.ray, self.state, &self.hits, &mut self.leaves)
     }
 
     #[inline(always)]
-    fn finish(&mut self, bvh: &CwBvh, at: &mut Cursor) {
+    fn finish<T: NodeTest>(&mut self, bvh: &CwBvh, at: &mut Cursor<T>) {
         while !self.step(bvh, at) {}
     }
 }
@@ -40,17 +41,21 @@ where
 /// Walks `a` and `b` through `bvh`, one step of each in turn until one is over, then the
 /// other to its end.
 #[inline(always)]
-pub fn walk_pair<Ha, La, Hb, Lb>(bvh: &CwBvh, mut a: Walk<Ha, La>, mut b: Walk<Hb, Lb>)
-where
+pub fn walk_pair<Ha, La, Hb, Lb>(
+    bvh: &CwBvh,
+    isa: impl NodeTest,
+    mut a: Walk<Ha, La>,
+    mut b: Walk<Hb, Lb>,
+) where
     Ha: Fn(usize, &Ray, u32) -> u32,
     La: Leaves,
     Hb: Fn(usize, &Ray, u32) -> u32,
     Lb: Leaves,
 {
-    let Some(mut at_a) = Cursor::start(bvh, a.ray, a.state) else {
+    let Some(mut at_a) = Cursor::start(bvh, isa, a.ray, a.state) else {
         return;
     };
-    let Some(mut at_b) = Cursor::start(bvh, b.ray, b.state) else {
+    let Some(mut at_b) = Cursor::start(bvh, isa, b.ray, b.state) else {
         return;
     };
     loop {
