@@ -9,7 +9,7 @@
 use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_tracer::{
-    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, Traversal, build_params, hash_key, mix64,
+    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, WalkStack, build_params, hash_key, mix64,
 };
 use glam::Vec3A;
 use rayon::prelude::*;
@@ -129,12 +129,12 @@ fn make_rays(ray: impl Fn(u64) -> (Vec3A, Vec3A) + Sync + Send) -> Vec<(Vec3A, V
 /// as the renderer does, and counts the rays it reports as hits.
 fn ray_set(
     rays: &[(Vec3A, Vec3A)],
-    hits: impl Fn(&mut Traversal, (Vec3A, Vec3A)) -> bool + Sync,
+    hits: impl Fn(&mut WalkStack, (Vec3A, Vec3A)) -> bool + Sync,
 ) -> RaySet {
     let (seconds, count) = timed(|| {
         rays.par_iter()
             .with_min_len(1024)
-            .map_init(Traversal::default, |state, &r| hits(state, r))
+            .map_init(WalkStack::default, |state, &r| hits(state, r))
             .filter(|&hit| hit)
             .count()
     });
@@ -150,7 +150,7 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     const SIDE: u64 = 1 << 10;
     let key = hash_key(&[0xB7B, n as u64]);
     let (lo, hi) = (accel.bounds_min, accel.bounds_max);
-    let closest = |state: &mut Traversal, (o, d): (Vec3A, Vec3A)| {
+    let closest = |state: &mut WalkStack, (o, d): (Vec3A, Vec3A)| {
         accel
             .intersect_reusing(state, o, d, f32::INFINITY)
             .is_some()

@@ -7,15 +7,17 @@
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
 use crate::isa::{Baseline, NodeTest};
-use crate::traverse::{ChildSelect, ChildWords, FloatPlanes, Leaves, walk_with};
+use crate::traverse::Leaves;
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
+use crate::wide_bvh::WideBvh;
+use crate::wide_walk::{WalkStack, walk8};
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
+use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::cwbvh::node::CwBvhNode;
-use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
 use obvhs::triangle::Triangle;
@@ -41,22 +43,14 @@ pub struct Accel {
     packs: Vec<Tri4>,
     /// Per padded slot (padding: zero normal, ids `u32::MAX`).
     pub info: Vec<TriInfo>,
-    /// Each node's child planes as floats when there are at most [`FLOAT_PLANES_MAX_NODES`]
-    /// nodes (empty otherwise): the node test then skips converting the bytes.
-    planes: Vec<FloatPlanes>,
-    /// Each node's [`ChildWords`] when `planes` is empty (the planes hold them otherwise).
-    words: Vec<ChildWords>,
+    /// The nodes the queries walk: `bvh`'s, with float boxes and plain child references.
+    wide: WideBvh,
     triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
     pub degenerate: usize,
     pub bounds_min: Vec3A,
     pub bounds_max: Vec3A,
 }
-
-/// Most nodes whose planes [`Accel`] keeps as floats (256 bytes a node, 2 MiB at most, so
-/// they stay in cache next to the nodes): an interior of a few thousand triangles has a few
-/// hundred nodes; a million-triangle mesh keeps the bytes alone.
-pub const FLOAT_PLANES_MAX_NODES: usize = 1 << 13;
 
 /// The closest hit in one [`Accel`]: distance and BVH slot.
 #[derive(Clone, Copy, Debug)]
@@ -163,17 +157,12 @@ impl Accel {
             })
             .collect();
         let triangles = kept.len();
-        let (planes, words) = if bvh.nodes.len() <= FLOAT_PLANES_MAX_NODES {
-            (bvh.nodes.iter().map(FloatPlanes::of).collect(), Vec::new())
-        } else {
-            (Vec::new(), bvh.nodes.iter().map(ChildWords::of).collect())
-        };
+        let wide = WideBvh::of(&bvh);
         Accel {
             bvh,
             packs,
             info,
-            planes,
-            words,
+            wide,
             triangles,
             degenerate,
             bounds_min: lo,
@@ -184,13 +173,13 @@ impl Accel {
     /// Closest hit along `dir` (unit) from `origin`, within (0, tmax).
     #[inline]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<SlotHit> {
-        self.closest(&Ray::new(origin, dir, 0.0, tmax), &mut Traversal::default())
+        self.closest(&Ray::new(origin, dir, 0.0, tmax), &mut WalkStack::default())
     }
 
     /// The closest hit of `ray` within its (tmin, tmax); `state` is scratch space, reused. Of
     /// equally near hits in one node the highest slot wins, as in obvhs's one-by-one order.
     #[inline]
-    pub fn closest(&self, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
+    pub fn closest(&self, ray: &Ray, state: &mut WalkStack) -> Option<SlotHit> {
         self.closest_with(Baseline, ray, state)
     }
 
@@ -200,7 +189,7 @@ impl Accel {
         &self,
         test: impl NodeTest,
         ray: &Ray,
-        state: &mut Traversal,
+        state: &mut WalkStack,
     ) -> Option<SlotHit> {
         let mut best = None;
         let shear = Shear::new(ray);
@@ -214,54 +203,24 @@ impl Accel {
     pub fn closest_and_unblocked_with(
         &self,
         test: impl NodeTest,
-        (ray, state): (&Ray, &mut Traversal),
-        (shadow, shadow_state): (&Ray, &mut Traversal),
+        (ray, state): (&Ray, &mut WalkStack),
+        (shadow, shadow_state): (&Ray, &mut WalkStack),
     ) -> (Option<SlotHit>, bool) {
         let (mut best, mut blocked) = (None, false);
         let (shear, shadow_shear) = (Shear::new(ray), Shear::new(shadow));
-        let a = (ray, state, self.closest_leaves(&shear, &mut best));
-        let b = (
-            shadow,
-            shadow_state,
-            self.blocking_leaves(&shadow_shear, &mut blocked),
-        );
-        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
-        if planes.is_empty() {
-            self.walk_two(test, a, b, |sel| {
-                move |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r)
-            });
-        } else {
-            self.walk_two(test, a, b, |sel| {
-                move |i: usize, r: &Ray, _| test.float(&planes[i], sel, r)
-            });
-        }
-        (best, !blocked)
-    }
-
-    /// Walks rays `a` and `b` with their leaf tests together ([`walk_pair`]), each with the
-    /// node test `node_test` makes for its direction.
-    #[inline(always)]
-    fn walk_two<H: Fn(usize, &Ray, u32) -> u32>(
-        &self,
-        isa: impl NodeTest,
-        (a, state_a, leaves_a): (&Ray, &mut Traversal, impl Leaves),
-        (b, state_b, leaves_b): (&Ray, &mut Traversal, impl Leaves),
-        node_test: impl Fn(&'static ChildSelect) -> H,
-    ) {
-        let (mut ra, mut rb) = (*a, *b);
+        let (mut ra, mut rb) = (*ray, *shadow);
         let a = Walk {
-            hits: node_test(ChildSelect::new(ra.direction)),
             ray: &mut ra,
-            state: state_a,
-            leaves: leaves_a,
+            stack: state,
+            leaves: self.closest_leaves(&shear, &mut best),
         };
         let b = Walk {
-            hits: node_test(ChildSelect::new(rb.direction)),
             ray: &mut rb,
-            state: state_b,
-            leaves: leaves_b,
+            stack: shadow_state,
+            leaves: self.blocking_leaves(&shadow_shear, &mut blocked),
         };
-        walk_pair(&self.bvh, isa, a, b);
+        walk_pair(&self.wide, test, a, b);
+        (best, !blocked)
     }
 
     /// The leaf test of a closest-hit walk.
@@ -292,47 +251,27 @@ impl Accel {
         }
     }
 
-    /// [`crate::traverse::walk`] over this structure with `test`'s float-plane form when the
-    /// planes are kept, its byte form otherwise.
+    /// [`walk8`] over this structure.
     #[inline(always)]
-    fn walk(&self, test: impl NodeTest, ray: &Ray, state: &mut Traversal, leaves: impl Leaves) {
-        let (bvh, planes, words) = (&self.bvh, &self.planes, &self.words);
-        let sel = ChildSelect::new(ray.direction);
-        if planes.is_empty() {
-            let hits = |i: usize, r: &Ray, _| test.words(&bvh.nodes[i], &words[i], sel, r);
-            walk_with(bvh, test, &mut { *ray }, state, hits, leaves);
-        } else {
-            let hits = |i: usize, r: &Ray, _| test.float(&planes[i], sel, r);
-            walk_with(bvh, test, &mut { *ray }, state, hits, leaves);
-        }
-    }
-
-    /// The same structure with its planes kept as bytes (what a large one does), so that tests
-    /// can compare the two node tests on one BVH.
-    #[cfg(test)]
-    pub fn with_byte_planes(mut self) -> Accel {
-        if !self.planes.is_empty() {
-            self.planes = Vec::new();
-            self.words = self.bvh.nodes.iter().map(ChildWords::of).collect();
-        }
-        self
+    fn walk(&self, test: impl NodeTest, ray: &Ray, state: &mut WalkStack, leaves: impl Leaves) {
+        walk8(&self.wide, test, &mut { *ray }, state, leaves);
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
     #[inline]
     pub fn unoccluded(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> bool {
-        self.unblocked(&Ray::new(origin, dir, 0.0, tmax), &mut Traversal::default())
+        self.unblocked(&Ray::new(origin, dir, 0.0, tmax), &mut WalkStack::default())
     }
 
     /// True when no triangle blocks `ray` within its (tmin, tmax).
     #[inline]
-    pub fn unblocked(&self, ray: &Ray, state: &mut Traversal) -> bool {
+    pub fn unblocked(&self, ray: &Ray, state: &mut WalkStack) -> bool {
         self.unblocked_with(Baseline, ray, state)
     }
 
     /// [`Accel::unblocked`] with the node test `test`.
     #[inline(always)]
-    pub fn unblocked_with(&self, test: impl NodeTest, ray: &Ray, state: &mut Traversal) -> bool {
+    pub fn unblocked_with(&self, test: impl NodeTest, ray: &Ray, state: &mut WalkStack) -> bool {
         let mut blocked = false;
         let shear = Shear::new(ray);
         self.walk(test, ray, state, self.blocking_leaves(&shear, &mut blocked));
@@ -347,7 +286,7 @@ impl Accel {
         &self,
         test: impl NodeTest,
         ray: &Ray,
-        state: &mut Traversal,
+        state: &mut WalkStack,
         visit: &mut dyn FnMut(SlotHit) -> bool,
     ) -> bool {
         let mut stopped = false;
@@ -386,6 +325,12 @@ impl Accel {
         &self.bvh
     }
 
+    /// The nodes the queries walk.
+    #[cfg(test)]
+    pub(crate) fn wide(&self) -> &WideBvh {
+        &self.wide
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.triangles
     }
@@ -397,8 +342,7 @@ impl Accel {
             + self.bvh.primitive_indices.len() * 4
             + self.packs.len() * std::mem::size_of::<Tri4>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
-            + self.planes.len() * std::mem::size_of::<FloatPlanes>()
-            + self.words.len() * std::mem::size_of::<ChildWords>()
+            + self.wide.memory_bytes()
     }
 }
 

@@ -7,15 +7,15 @@ use crate::accel::{Accel, SlotHit};
 #[cfg(target_arch = "x86_64")]
 use crate::isa::Avx2;
 use crate::isa::Baseline;
+use crate::wide_walk::WalkStack;
 use glam::Vec3A;
-use obvhs::cwbvh::Traversal;
 use obvhs::ray::Ray;
 
 impl Accel {
     /// [`Accel::intersect`] with `state` reused and the wide node test where there is one.
     pub fn intersect_reusing(
         &self,
-        state: &mut Traversal,
+        state: &mut WalkStack,
         origin: Vec3A,
         dir: Vec3A,
         tmax: f32,
@@ -32,7 +32,7 @@ impl Accel {
     /// [`Accel::unoccluded`] with `state` reused and the wide node test where there is one.
     pub fn unoccluded_reusing(
         &self,
-        state: &mut Traversal,
+        state: &mut WalkStack,
         origin: Vec3A,
         dir: Vec3A,
         tmax: f32,
@@ -50,7 +50,7 @@ impl Accel {
     /// The CPU must have AVX2 (and what [`crate::isa::has_avx2`] checks with it).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    unsafe fn closest_avx2(&self, avx2: Avx2, ray: &Ray, state: &mut Traversal) -> Option<SlotHit> {
+    unsafe fn closest_avx2(&self, avx2: Avx2, ray: &Ray, state: &mut WalkStack) -> Option<SlotHit> {
         self.closest_with(avx2, ray, state)
     }
 
@@ -58,7 +58,7 @@ impl Accel {
     /// As for [`Accel::closest_avx2`].
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    unsafe fn unblocked_avx2(&self, avx2: Avx2, ray: &Ray, state: &mut Traversal) -> bool {
+    unsafe fn unblocked_avx2(&self, avx2: Avx2, ray: &Ray, state: &mut WalkStack) -> bool {
         self.unblocked_with(avx2, ray, state)
     }
 }

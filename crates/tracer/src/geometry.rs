@@ -11,6 +11,7 @@ use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
 
 mod query;
+use crate::wide_walk::WalkStack;
 use eyeadapt_scene::{MaterialId, Scene};
 use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
@@ -65,9 +66,9 @@ pub struct Geometry {
 /// Per-ray traversal state, reused across the rays of a path.
 pub struct RayScratch {
     top: Traversal,
-    bottom: Traversal,
+    bottom: WalkStack,
     /// The shadow ray's, while it is walked together with a path's next ray.
-    shadow: Traversal,
+    shadow: WalkStack,
     /// The see-through surfaces a shadow ray crosses (`shadow.rs`).
     pub(crate) crossings: Vec<Hit>,
 }
@@ -204,8 +205,8 @@ impl Geometry {
     pub fn scratch(&self) -> RayScratch {
         RayScratch {
             top: Traversal::default(),
-            bottom: Traversal::default(),
-            shadow: Traversal::default(),
+            bottom: WalkStack::default(),
+            shadow: WalkStack::default(),
             crossings: Vec::new(),
         }
     }

@@ -12,6 +12,8 @@
 //! sets `EYEADAPT_SIMD=baseline` (for that comparison, and to rule the wide path out when
 //! chasing a problem).
 use crate::traverse::{ChildSelect, ChildWords, FloatPlanes};
+use crate::wide_bvh::Node8;
+use crate::wide_test::Slab;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
 use std::sync::OnceLock;
@@ -26,6 +28,9 @@ pub trait NodeTest: Copy {
     /// The number of set bits of `byte` (below 256): the walk's count of a node's inner
     /// children before the one it enters.
     fn ones8(self, byte: u32) -> u32;
+    /// [`crate::wide_test`]'s box test of a [`Node8`]: the children entered within (ε, tmax)
+    /// and their entry distances.
+    fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]);
 }
 
 /// The x86-64 baseline's node tests (two SSE2 halves of four children).
@@ -48,6 +53,10 @@ impl NodeTest for Baseline {
     #[inline(always)]
     fn ones8(self, byte: u32) -> u32 {
         crate::traverse::ONES[(byte & 0xff) as usize] as u32
+    }
+    #[inline(always)]
+    fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]) {
+        crate::wide_test::node8_sse2(node, slab, tmax)
     }
 }
 
@@ -78,6 +87,11 @@ impl NodeTest for Avx2 {
         // One POPCNT where inlined into the ray queries compiled with it (geometry/query.rs,
         // accel_wide.rs); the portable count elsewhere. The same number either way.
         (byte & 0xff).count_ones()
+    }
+    #[inline(always)]
+    fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]) {
+        // SAFETY: an `Avx2` is only made where the CPU has AVX2.
+        unsafe { crate::wide_test::node8_avx2(node, slab, tmax) }
     }
 }
 

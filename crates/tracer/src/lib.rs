@@ -57,6 +57,9 @@ mod tri4;
 mod triangle;
 mod trig;
 mod vertex;
+mod wide_bvh;
+mod wide_test;
+mod wide_walk;
 
 pub use crate::accel::{Accel, InputTri, SlotHit, TriInfo, build_params};
 pub use crate::bsdf::{Bsdf, BsdfSample};
@@ -81,5 +84,6 @@ pub use crate::material::Materials;
 pub use crate::revision::RENDER_REVISION;
 pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;
+pub use crate::wide_walk::WalkStack;
 pub use obvhs::BvhBuildParams;
 pub use obvhs::cwbvh::Traversal;

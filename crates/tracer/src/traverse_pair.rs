@@ -6,34 +6,30 @@
 //! from the same vertex do not depend on each other; walking them together, one step of each
 //! per round, gives the core two independent chains to overlap.
 //!
-//! Each walk takes exactly the steps it takes alone ([`Cursor::step`]), with its own ray,
+//! Each walk takes exactly the steps it takes alone ([`Cursor8::step`]), with its own ray,
 //! stack and leaf test, so the results are those of two separate walks, bit for bit.
 use crate::isa::NodeTest;
-use crate::traverse::{Cursor, Leaves};
-use obvhs::cwbvh::{CwBvh, Traversal};
+use crate::traverse::Leaves;
+use crate::wide_bvh::WideBvh;
+use crate::wide_walk::{Cursor8, WalkStack};
 use obvhs::ray::Ray;
 
-/// One walk's own part: its ray, its traversal state, its node test and its leaf test (as
-/// for [`crate::traverse::walk_with`]).
-pub struct Walk<'a, H, L> {
+/// One walk's own part: its ray, its stack and its leaf test (as for
+/// [`crate::wide_walk::walk8`]).
+pub struct Walk<'a, L> {
     pub ray: &'a mut Ray,
-    pub state: &'a mut Traversal,
-    pub hits: H,
+    pub stack: &'a mut WalkStack,
     pub leaves: L,
 }
 
-impl<H, L> Walk<'_, H, L>
-where
-    H: Fn(usize, &Ray, u32) -> u32,
-    L: Leaves,
-{
+impl<L: Leaves> Walk<'_, L> {
     #[inline(always)]
-    fn step<T: NodeTest>(&mut self, bvh: &CwBvh, at: &mut Cursor<T>) -> bool {
-        at.step(bvh, self.ray, self.state, &self.hits, &mut self.leaves)
+    fn step<T: NodeTest>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T>) -> bool {
+        at.step(bvh, self.ray, self.stack, &mut self.leaves)
     }
 
     #[inline(always)]
-    fn finish<T: NodeTest>(&mut self, bvh: &CwBvh, at: &mut Cursor<T>) {
+    fn finish<T: NodeTest>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T>) {
         while !self.step(bvh, at) {}
     }
 }
@@ -41,21 +37,16 @@ where
 /// Walks `a` and `b` through `bvh`, one step of each in turn until one is over, then the
 /// other to its end.
 #[inline(always)]
-pub fn walk_pair<Ha, La, Hb, Lb>(
-    bvh: &CwBvh,
+pub fn walk_pair<La: Leaves, Lb: Leaves>(
+    bvh: &WideBvh,
     isa: impl NodeTest,
-    mut a: Walk<Ha, La>,
-    mut b: Walk<Hb, Lb>,
-) where
-    Ha: Fn(usize, &Ray, u32) -> u32,
-    La: Leaves,
-    Hb: Fn(usize, &Ray, u32) -> u32,
-    Lb: Leaves,
-{
-    let Some(mut at_a) = Cursor::start(bvh, isa, a.ray, a.state) else {
+    mut a: Walk<La>,
+    mut b: Walk<Lb>,
+) {
+    let Some(mut at_a) = Cursor8::start(bvh, isa, a.ray) else {
         return;
     };
-    let Some(mut at_b) = Cursor::start(bvh, isa, b.ray, b.state) else {
+    let Some(mut at_b) = Cursor8::start(bvh, isa, b.ray) else {
         return;
     };
     loop {
@@ -76,8 +67,8 @@ mod tests {
     use crate::InputTri;
     use crate::accel::Accel;
     use crate::isa::{Baseline, NodeTest};
+    use crate::wide_walk::WalkStack;
     use glam::Vec3A;
-    use obvhs::cwbvh::Traversal;
     use obvhs::ray::Ray;
 
     fn p3(s: &mut u64) -> Vec3A {
@@ -105,10 +96,10 @@ mod tests {
     }
 
     /// Walked together or one after the other, a closest-hit ray and a shadow ray get the
-    /// same answers, for both node-test forms and every instruction set here.
+    /// same answers, on every instruction set here.
     fn compare(accel: &Accel, test: impl NodeTest, name: &str) {
         let mut s = 17u64 << 32;
-        let (mut st, mut st_shadow) = (Traversal::default(), Traversal::default());
+        let (mut st, mut st_shadow) = (WalkStack::default(), WalkStack::default());
         let (mut hits, mut blocked) = (0, 0);
         for k in 0..3000 {
             let o = p3(&mut s) * 30.0 - 15.0;
@@ -140,14 +131,11 @@ mod tests {
     #[test]
     fn walking_two_rays_together_answers_what_walking_them_apart_does() {
         let tris = soup(4000);
-        let floats = Accel::build(&tris);
-        let bytes = Accel::build(&tris).with_byte_planes();
-        compare(&floats, Baseline, "float planes, baseline");
-        compare(&bytes, Baseline, "byte planes, baseline");
+        let accel = Accel::build(&tris);
+        compare(&accel, Baseline, "baseline");
         #[cfg(target_arch = "x86_64")]
         if let Some(wide) = crate::isa::avx2() {
-            compare(&floats, wide, "float planes, AVX2");
-            compare(&bytes, wide, "byte planes, AVX2");
+            compare(&accel, wide, "AVX2");
         }
     }
 }

@@ -225,7 +225,7 @@ mod tests {
     use crate::sampler::mix64;
     use crate::triangle::tests::{unit, v3};
     use crate::triangle::{intersect, normal_and_area};
-    use obvhs::cwbvh::Traversal;
+    use crate::wide_walk::WalkStack;
     use obvhs::triangle::Triangle;
 
     /// A random triangle; every 8th has no area (a repeated vertex, or collinear vertices),
@@ -457,17 +457,11 @@ mod tests {
         accel_matches_brute_force(Accel::build(&terrain(24)));
     }
 
-    #[test]
-    fn accel_with_byte_planes_matches_testing_every_triangle() {
-        // The node test of structures above `FLOAT_PLANES_MAX_NODES` nodes.
-        accel_matches_brute_force(Accel::build(&terrain(24)).with_byte_planes());
-    }
-
     fn accel_matches_brute_force(accel: Accel) {
         let input = terrain(24);
         assert_eq!(accel.triangle_count(), input.len());
         let scalar: Vec<Triangle> = input.iter().map(|t| t.triangle()).collect();
-        let mut state = Traversal::default();
+        let mut state = WalkStack::default();
         let (mut hits, mut several) = (0, 0);
         for k in 0..4000u64 {
             let r = mix64(k);
@@ -527,7 +521,7 @@ mod tests {
         let n = 16;
         let input = terrain(n);
         let accel = Accel::build(&input);
-        let mut state = Traversal::default();
+        let mut state = WalkStack::default();
         let mut through = 0;
         for k in 0..20_000u64 {
             let r = mix64(k);

@@ -1,0 +1,139 @@
+//! The walk of a [`WideBvh`]: nearest child first, with the entry distances on the stack.
+//!
+//! At each node the eight boxes are tested together ([`crate::wide_test`]). The node's leaf
+//! children that the ray enters are handed over together, as slot bits (the [`Leaves`] of
+//! [`crate::traverse`], so the leaf tests are the CWBVH walk's), and may shorten the ray. Of
+//! the inner children entered, a lone one is entered directly; several are pushed farthest
+//! first, so that the nearest is on top. A popped child is skipped when a hit found since it
+//! was pushed is nearer than its box.
+//!
+//! The order depends only on the distances, which are the same bits on every instruction set,
+//! so the walk visits the same nodes in the same order everywhere; of equally near children the
+//! later one is entered first.
+use crate::isa::NodeTest;
+use crate::traverse::Leaves;
+use crate::wide_bvh::WideBvh;
+use crate::wide_test::Slab;
+use obvhs::ray::Ray;
+
+/// A child waiting on the stack: its node index and the distance at which the ray enters it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Entry {
+    node: u32,
+    t: f32,
+}
+
+/// A walk's stack, kept from ray to ray so that it is allocated once per worker. It grows as
+/// a deep structure needs (each level of the current path holds at most seven children).
+#[derive(Clone, Debug, Default)]
+pub struct WalkStack {
+    entries: Vec<Entry>,
+}
+
+/// Where a walk stands between two of its steps: the node it enters next and the stack's
+/// height. Two cursors on two rays can be stepped in turn ([`crate::traverse_pair`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Cursor8<T> {
+    node: u32,
+    height: usize,
+    slab: Slab,
+    isa: T,
+}
+
+impl<T: NodeTest> Cursor8<T> {
+    /// A walk of `ray` from the root; `None` for an empty structure.
+    #[inline(always)]
+    pub fn start(bvh: &WideBvh, isa: T, ray: &Ray) -> Option<Cursor8<T>> {
+        (!bvh.nodes.is_empty()).then(|| Cursor8 {
+            node: 0,
+            height: 0,
+            slab: Slab::new(ray),
+            isa,
+        })
+    }
+
+    /// One node of the walk: its test, its leaves, the choice of the next node. True when the
+    /// walk is over (`leaves` stopped it, or nothing is left); not to be called after that.
+    #[inline(always)]
+    pub fn step(
+        &mut self,
+        bvh: &WideBvh,
+        ray: &mut Ray,
+        stack: &mut WalkStack,
+        leaves: &mut impl Leaves,
+    ) -> bool {
+        let node = &bvh.nodes[self.node as usize];
+        let (mask, near) = self.isa.node8(node, &self.slab, ray.tmax);
+        let leaf = mask & node.leaves;
+        if leaf != 0 {
+            let mut slots = 0;
+            let mut m = leaf;
+            while m != 0 {
+                slots |= node.child[m.trailing_zeros() as usize];
+                m &= m - 1;
+            }
+            if leaves.visit(node.prim_base, slots, ray) {
+                return true;
+            }
+        }
+        let mut inner = mask & !node.leaves;
+        if inner != 0 && inner & (inner - 1) == 0 {
+            let c = inner.trailing_zeros() as usize;
+            if near[c] <= ray.tmax {
+                self.node = node.child[c];
+                return false;
+            }
+        } else if inner != 0 {
+            if stack.entries.len() < self.height + 8 {
+                stack.entries.resize(self.height + 8, Entry::default());
+            }
+            let (base, e) = (self.height, &mut stack.entries);
+            // Insertion into the run pushed here, kept farthest first.
+            while inner != 0 {
+                let c = inner.trailing_zeros() as usize;
+                inner &= inner - 1;
+                let new = Entry {
+                    node: node.child[c],
+                    t: near[c],
+                };
+                let mut j = self.height;
+                while j > base && e[j - 1].t < new.t {
+                    e[j] = e[j - 1];
+                    j -= 1;
+                }
+                e[j] = new;
+                self.height += 1;
+            }
+        }
+        while self.height > 0 {
+            self.height -= 1;
+            let e = stack.entries[self.height];
+            if e.t <= ray.tmax {
+                self.node = e.node;
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Walks the nodes `ray` enters, nearest first, and hands each entered node's hit leaf
+/// triangles to `leaves` (as [`crate::traverse::walk`] does), which may shorten the ray and
+/// stop the walk.
+#[inline(always)]
+pub fn walk8(
+    bvh: &WideBvh,
+    isa: impl NodeTest,
+    ray: &mut Ray,
+    stack: &mut WalkStack,
+    mut leaves: impl Leaves,
+) {
+    let Some(mut at) = Cursor8::start(bvh, isa, ray) else {
+        return;
+    };
+    while !at.step(bvh, ray, stack, &mut leaves) {}
+}
+
+#[cfg(test)]
+#[path = "wide_walk_tests.rs"]
+mod tests;
