@@ -193,7 +193,7 @@ impl Accel {
     ) -> Option<SlotHit> {
         let mut best = None;
         let shear = Shear::new(ray);
-        self.walk(test, ray, state, self.closest_leaves(&shear, &mut best));
+        self.walk::<true>(test, ray, state, self.closest_leaves(&shear, &mut best));
         best
     }
 
@@ -251,10 +251,16 @@ impl Accel {
         }
     }
 
-    /// [`walk8`] over this structure.
+    /// [`walk8`] over this structure, nearest child first if `ORDERED`.
     #[inline(always)]
-    fn walk(&self, test: impl NodeTest, ray: &Ray, state: &mut WalkStack, leaves: impl Leaves) {
-        walk8(&self.wide, test, &mut { *ray }, state, leaves);
+    fn walk<const ORDERED: bool>(
+        &self,
+        test: impl NodeTest,
+        ray: &Ray,
+        state: &mut WalkStack,
+        leaves: impl Leaves,
+    ) {
+        walk8::<ORDERED>(&self.wide, test, &mut { *ray }, state, leaves);
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
@@ -274,7 +280,7 @@ impl Accel {
     pub fn unblocked_with(&self, test: impl NodeTest, ray: &Ray, state: &mut WalkStack) -> bool {
         let mut blocked = false;
         let shear = Shear::new(ray);
-        self.walk(test, ray, state, self.blocking_leaves(&shear, &mut blocked));
+        self.walk::<false>(test, ray, state, self.blocking_leaves(&shear, &mut blocked));
         !blocked
     }
 
@@ -297,7 +303,7 @@ impl Accel {
             visit,
             stopped: &mut stopped,
         };
-        self.walk(test, ray, state, leaves);
+        self.walk::<false>(test, ray, state, leaves);
         stopped
     }
 

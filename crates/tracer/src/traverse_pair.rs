@@ -24,18 +24,18 @@ pub struct Walk<'a, L> {
 
 impl<L: Leaves> Walk<'_, L> {
     #[inline(always)]
-    fn step<T: NodeTest>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T>) -> bool {
+    fn step<T: NodeTest, const O: bool>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T, O>) -> bool {
         at.step(bvh, self.ray, self.stack, &mut self.leaves)
     }
 
     #[inline(always)]
-    fn finish<T: NodeTest>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T>) {
+    fn finish<T: NodeTest, const O: bool>(&mut self, bvh: &WideBvh, at: &mut Cursor8<T, O>) {
         while !self.step(bvh, at) {}
     }
 }
 
-/// Walks `a` and `b` through `bvh`, one step of each in turn until one is over, then the
-/// other to its end.
+/// Walks `a` (a closest-hit ray, nearest child first) and `b` (a shadow ray, in child order)
+/// through `bvh`, one step of each in turn until one is over, then the other to its end.
 #[inline(always)]
 pub fn walk_pair<La: Leaves, Lb: Leaves>(
     bvh: &WideBvh,
@@ -43,10 +43,10 @@ pub fn walk_pair<La: Leaves, Lb: Leaves>(
     mut a: Walk<La>,
     mut b: Walk<Lb>,
 ) {
-    let Some(mut at_a) = Cursor8::start(bvh, isa, a.ray) else {
+    let Some(mut at_a) = Cursor8::<_, true>::start(bvh, isa, a.ray) else {
         return;
     };
-    let Some(mut at_b) = Cursor8::start(bvh, isa, b.ray) else {
+    let Some(mut at_b) = Cursor8::<_, false>::start(bvh, isa, b.ray) else {
         return;
     };
     loop {

