@@ -1,4 +1,6 @@
-//! Closest-hit and shadow queries over a set of triangles, through an obvhs CWBVH.
+//! Closest-hit and shadow queries over a set of triangles: obvhs builds a CWBVH, whose nodes
+//! are then decoded into float eight-wide nodes ([`WideBvh`]) that the queries walk nearest
+//! child first ([`crate::wide_walk`]).
 //!
 //! Triangles are copied into BVH order once (obvhs reports *slots*, not triangle indices), and
 //! per-slot ids live in a parallel array, so the hot loop never looks anything up through

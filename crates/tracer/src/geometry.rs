@@ -1,4 +1,4 @@
-//! The scene's geometry for ray queries, in two levels: an [`Accel`] (obvhs CWBVH) per unique
+//! The scene's geometry for ray queries, in two levels: an [`Accel`] (float eight-wide nodes) per unique
 //! mesh in object space and a CWBVH over the instances' world-space boxes, so memory grows with
 //! the unique meshes, not with the instances. When no mesh is placed twice, every triangle is
 //! put into one world-space [`Accel`] instead (the flat layout): nothing is shared then, and one

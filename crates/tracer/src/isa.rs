@@ -1,5 +1,7 @@
-//! Which node test the traversal runs: the x86-64 baseline's SSE2 one, or, on CPUs that have
-//! AVX2, the same test on all eight children in one 256-bit register ([`crate::traverse_avx2`]).
+//! Which node tests the walks run: the x86-64 baseline's SSE2 ones, or, on CPUs that have
+//! AVX2, the same tests on all eight children in one 256-bit register ([`crate::wide_test`]
+//! for each mesh's [`crate::wide_bvh::Node8`]s, [`crate::traverse_avx2`] for the CWBVH over
+//! the instances).
 //! Both give the same hit masks bit for bit (the same IEEE operations in the same order, one
 //! lane per child, and never FMA), so a farm that mixes old and new nodes still writes the same
 //! frames; `tests/cpu_features.rs` renders with each and compares the files.
@@ -11,19 +13,16 @@
 //! The choice is made once per process: AVX2 when the CPU reports it, unless the environment
 //! sets `EYEADAPT_SIMD=baseline` (for that comparison, and to rule the wide path out when
 //! chasing a problem).
-use crate::traverse::{ChildSelect, ChildWords, FloatPlanes};
 use crate::wide_bvh::Node8;
 use crate::wide_test::Slab;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
 use std::sync::OnceLock;
 
-/// A node test: the three forms of [`crate::traverse`]'s (float planes, byte planes with
-/// [`ChildWords`], byte planes with obvhs's child metadata), each giving the same mask as
-/// obvhs's `CwBvhNode::intersect_ray`.
+/// The node tests of one instruction set.
 pub trait NodeTest: Copy {
-    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32;
-    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32;
+    /// [`crate::traverse`]'s CWBVH node test: the same mask as obvhs's
+    /// `CwBvhNode::intersect_ray`.
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32;
     /// The number of set bits of `byte` (below 256): the walk's count of a node's inner
     /// children before the one it enters.
@@ -38,14 +37,6 @@ pub trait NodeTest: Copy {
 pub struct Baseline;
 
 impl NodeTest for Baseline {
-    #[inline(always)]
-    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-        crate::traverse::node_hits_float(planes, sel, ray)
-    }
-    #[inline(always)]
-    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
-        crate::traverse::node_hits_words(node, words, sel, ray)
-    }
     #[inline(always)]
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
         crate::traverse::node_hits(node, ray, oct_inv4)
@@ -68,18 +59,8 @@ pub struct Avx2(());
 #[cfg(target_arch = "x86_64")]
 impl NodeTest for Avx2 {
     #[inline(always)]
-    fn float(self, planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-        // SAFETY: an `Avx2` is only made where the CPU has AVX2.
-        unsafe { crate::traverse_avx2::node_hits_float(planes, sel, ray) }
-    }
-    #[inline(always)]
-    fn words(self, node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
-        // SAFETY: as above.
-        unsafe { crate::traverse_avx2::node_hits_words(node, words, sel, ray) }
-    }
-    #[inline(always)]
     fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
-        // SAFETY: as above.
+        // SAFETY: an `Avx2` is only made where the CPU has AVX2.
         unsafe { crate::traverse_avx2::node_hits(node, ray, oct_inv4) }
     }
     #[inline(always)]

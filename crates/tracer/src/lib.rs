@@ -1,4 +1,5 @@
-//! The renderer: a two-level obvhs CWBVH ([`Geometry`] over per-mesh [`Accel`]s), materials
+//! The renderer: two levels of eight-wide BVHs built by obvhs ([`Geometry`] over per-mesh
+//! [`Accel`]s, whose nodes are decoded to floats and walked nearest child first), materials
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
 //! through a [`Distribution2D`] or through light portals in the openings of an interior), a

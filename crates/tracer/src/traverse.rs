@@ -1,4 +1,6 @@
-//! Closest-hit and any-hit traversal of the obvhs CWBVH with eyeadapt's own node test.
+//! Closest-hit and any-hit traversal of an obvhs CWBVH with eyeadapt's own node test: the
+//! top level of an instanced scene (each mesh's own structure is walked by
+//! [`crate::wide_walk`]).
 //!
 //! obvhs's node test turns each child's 6 quantised plane bytes into floats one at a time (48
 //! scalar conversions per node), which made node tests a quarter of all instructions on the
@@ -12,10 +14,11 @@
 //! the node; min/max takes the right one). The traversal loop ([`walk`]) is obvhs's `traverse!`
 //! macro, except that it hands over a node's hit triangles together, so that leaves can be
 //! tested four at a time ([`crate::tri4`]), and that the node test is the caller's choice
-//! ([`walk_with`]): small structures keep their planes as floats ([`FloatPlanes`]), which
-//! spares the widening and conversion and gives the same masks.
+//! ([`walk_with`]).
 use crate::isa::NodeTest;
-use glam::{UVec2, Vec3A};
+use glam::UVec2;
+#[cfg(target_arch = "x86_64")]
+use glam::Vec3A;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::faststack::FastStack;
@@ -23,101 +26,6 @@ use obvhs::ray::{Ray, RayHit};
 
 /// obvhs's lower bound on a child's entry distance (its `node::EPSILON`).
 pub(crate) const NODE_EPSILON: f32 = 0.0001;
-
-/// A node's 48 quantised child planes as floats, converted once at build time: what
-/// [`node_hits`] widens and converts on every test (a fifth of its instructions), and the
-/// node's [`ChildWords`], extent and origin beside them. 256 bytes a node, so [`crate::accel`] keeps them only
-/// for small structures.
-#[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(32))]
-pub struct FloatPlanes {
-    /// min x, max x, min y, max y, min z, max z of the 8 children, in node order.
-    pub(crate) q: [[f32; 8]; 6],
-    pub(crate) words: ChildWords,
-    /// The node's quantisation step per axis (`compute_extent`) and its origin `p`.
-    pub(crate) extent: Vec3A,
-    pub(crate) origin: Vec3A,
-}
-
-impl FloatPlanes {
-    pub fn of(node: &CwBvhNode) -> FloatPlanes {
-        FloatPlanes {
-            q: plane_fields(node).map(|bytes| bytes.map(|b| b as f32)),
-            words: ChildWords::of(node),
-            extent: node.compute_extent(),
-            origin: Vec3A::from(node.p),
-        }
-    }
-}
-
-/// What each child of a node adds to the node's hit mask when the ray enters it, made once at
-/// build time, so that the mask is the OR of the entered children's words (SSE2, no loop)
-/// instead of obvhs's per-child shifts of `get_child_and_index_bits`. A leaf child's word is
-/// its slot bits (`count` ones from its offset, below bit 24); an inner child's is the whole
-/// top byte, which [`ChildSelect`] narrows to the child's bit for the ray's octant; an empty
-/// child's is 0.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[repr(C, align(16))]
-pub struct ChildWords {
-    pub(crate) w: [u32; 8],
-}
-
-impl ChildWords {
-    pub fn of(node: &CwBvhNode) -> ChildWords {
-        ChildWords {
-            w: node.child_meta.map(|meta| {
-                // obvhs's test: inner children's meta is 24 + slot (0b11xxx), a leaf's offset
-                // is below 24, so bits 3 and 4 are both set only for inner children.
-                if meta & (meta << 1) & 0x10 != 0 {
-                    0xff00_0000
-                } else {
-                    ((meta as u32 >> 5) & 7) << (meta & 31)
-                }
-            }),
-        }
-    }
-}
-
-/// Per ray: the word that keeps, of an inner child `c`'s top byte, only bit `24 + (c ^ o)`
-/// (`o` the ray's inverted octant: obvhs's traversal priority) and every leaf bit below 24.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
-pub struct ChildSelect {
-    pub(crate) w: [u32; 8],
-    /// obvhs's `Traversal::oct_inv4` of the ray's direction.
-    pub oct_inv4: u32,
-}
-
-/// [`ChildSelect`] of each inverted octant (`oct_inv4 & 7`), made at compile time: a ray
-/// looks its own up instead of building eight words (a fifth of what a matpreview ray's
-/// node tests had saved).
-static SELECT: [ChildSelect; 8] = {
-    let mut t = [ChildSelect {
-        w: [0; 8],
-        oct_inv4: 0,
-    }; 8];
-    let mut o = 0;
-    while o < 8 {
-        let mut c = 0;
-        while c < 8 {
-            t[o].w[c] = 0x00ff_ffff | 1 << (24 + (c as u32 ^ o as u32));
-            c += 1;
-        }
-        t[o].oct_inv4 = o as u32 * 0x0101_0101;
-        o += 1;
-    }
-    t
-};
-
-impl ChildSelect {
-    pub fn new(direction: Vec3A) -> &'static ChildSelect {
-        // obvhs's `ray_get_octant_inv4` (private there): 7 − octant in each byte.
-        let o = (if direction.x < 0.0 { 0 } else { 4 })
-            | (if direction.y < 0.0 { 0 } else { 2 })
-            | (if direction.z < 0.0 { 0 } else { 1 });
-        &SELECT[o]
-    }
-}
 
 /// A node's quantised child planes: min x, max x, min y, max y, min z, max z, 8 children each.
 #[inline(always)]
@@ -142,28 +50,6 @@ pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
         oct_inv4,
         entered(box_of(node), ray, byte_planes(node)),
     )
-}
-
-/// [`node_hits`] with the mask made from the node's [`ChildWords`]: the same mask, bit for bit.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-pub fn node_hits_words(node: &CwBvhNode, words: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
-    mask_by_words(words, sel, entered(box_of(node), ray, byte_planes(node)))
-}
-
-/// [`node_hits_words`] with the node's planes (and words, extent and origin) given as floats:
-/// the same mask, bit for bit (a byte converts to a float exactly).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-    use std::arch::x86_64::*;
-    // SAFETY: SSE2 is part of the x86_64 baseline; `FloatPlanes` is 16-byte aligned and each
-    // row is 8 floats, so both aligned loads are in bounds.
-    let lanes = entered((planes.extent, planes.origin), ray, |f| unsafe {
-        let row = planes.q[f].as_ptr();
-        (_mm_load_ps(row), _mm_load_ps(row.add(4)))
-    });
-    mask_by_words(&planes.words, sel, lanes)
 }
 
 /// Field `f` of the node's quantised planes (min x, max x, min y, max y, min z, max z) of
@@ -264,63 +150,10 @@ pub(crate) fn mask_from_lanes(node: &CwBvhNode, oct_inv4: u32, mut m: u32) -> u3
     hit_mask
 }
 
-/// The hit mask of the children entered (`lanes`, from [`entered`]) as the OR of their
-/// [`ChildWords`] narrowed by the ray's [`ChildSelect`]: no loop, no branch.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn mask_by_words(
-    words: &ChildWords,
-    sel: &ChildSelect,
-    lanes: [std::arch::x86_64::__m128; 2],
-) -> u32 {
-    use std::arch::x86_64::*;
-    // SAFETY: SSE2 is part of the x86_64 baseline; both structs are 16-byte aligned arrays of
-    // 8 u32, so the four aligned loads are in bounds.
-    unsafe {
-        let ld = |w: &[u32; 8], k: usize| _mm_load_si128(w.as_ptr().add(4 * k) as *const __m128i);
-        let half = |k: usize| {
-            let w = _mm_and_si128(ld(&words.w, k), ld(&sel.w, k));
-            _mm_and_si128(_mm_castps_si128(lanes[k]), w)
-        };
-        let a = _mm_or_si128(half(0), half(1));
-        let b = _mm_or_si128(a, _mm_shuffle_epi32::<0b01_00_11_10>(a));
-        let c = _mm_or_si128(b, _mm_shuffle_epi32::<0b10_11_00_01>(b));
-        _mm_cvtsi128_si32(c) as u32
-    }
-}
-
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
 pub fn node_hits(node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
     node.intersect_ray(ray, oct_inv4)
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-#[inline(always)]
-pub fn node_hits_words(node: &CwBvhNode, _: &ChildWords, sel: &ChildSelect, ray: &Ray) -> u32 {
-    node.intersect_ray(ray, sel.oct_inv4)
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-#[inline(always)]
-pub fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-    // The SSE2 test's arithmetic, one child at a time.
-    let d = (planes.extent * ray.inv_direction).to_array();
-    let o = ((planes.origin - ray.origin) * ray.inv_direction).to_array();
-    let mut mask = 0;
-    for c in 0..8 {
-        let (mut near, mut far) = (NODE_EPSILON, ray.tmax);
-        for a in 0..3 {
-            let t0 = planes.q[2 * a][c] * d[a] + o[a];
-            let t1 = planes.q[2 * a + 1][c] * d[a] + o[a];
-            near = near.max(t0.min(t1));
-            far = far.min(t0.max(t1));
-        }
-        if near <= far {
-            mask |= planes.words.w[c] & sel.w[c];
-        }
-    }
-    mask
 }
 
 /// The number of set bits of each byte: the x86-64 baseline has no POPCNT, so `count_ones`
@@ -379,7 +212,7 @@ impl<F: FnMut(u32, u32, &mut Ray) -> bool> Leaves for F {
 }
 
 /// [`walk`] with its node test given: `hits(i, ray, oct_inv4)` is [`node_hits`] of node `i`
-/// (or a test that gives the same masks, such as [`node_hits_float`]).
+/// (or a test that gives the same masks).
 #[inline(always)]
 pub fn walk_with(
     bvh: &CwBvh,

@@ -4,43 +4,11 @@
 //! and random rays — in about half the instructions. Callers hold an [`crate::isa::Avx2`], made
 //! only where the CPU has AVX2, and call these from code compiled for AVX2 (so they inline).
 #![cfg(target_arch = "x86_64")]
-use crate::traverse::{
-    ChildSelect, ChildWords, FloatPlanes, NODE_EPSILON, box_of, mask_from_lanes, plane_fields,
-};
+use crate::traverse::{NODE_EPSILON, box_of, mask_from_lanes, plane_fields};
 use glam::Vec3A;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
 use std::arch::x86_64::*;
-
-/// [`crate::traverse::node_hits_float`], eight lanes at once.
-///
-/// # Safety
-/// The CPU must have AVX2.
-#[target_feature(enable = "avx2")]
-#[inline]
-pub unsafe fn node_hits_float(planes: &FloatPlanes, sel: &ChildSelect, ray: &Ray) -> u32 {
-    let lanes = entered((planes.extent, planes.origin), ray, |f| {
-        // SAFETY: each row is 8 floats.
-        unsafe { _mm256_loadu_ps(planes.q[f].as_ptr()) }
-    });
-    mask_by_words(&planes.words, sel, lanes)
-}
-
-/// [`crate::traverse::node_hits_words`], eight lanes at once.
-///
-/// # Safety
-/// The CPU must have AVX2.
-#[target_feature(enable = "avx2")]
-#[inline]
-pub unsafe fn node_hits_words(
-    node: &CwBvhNode,
-    words: &ChildWords,
-    sel: &ChildSelect,
-    ray: &Ray,
-) -> u32 {
-    let lanes = entered(box_of(node), ray, byte_planes(node));
-    mask_by_words(words, sel, lanes)
-}
 
 /// [`crate::traverse::node_hits`] (the mask from obvhs's child metadata), eight lanes at once.
 ///
@@ -92,25 +60,6 @@ fn entered(
     let far = _mm256_min_ps(far, _mm256_set1_ps(ray.tmax));
     // SSE2's `cmpleps` is the ordered, signalling `<=`.
     _mm256_cmp_ps::<_CMP_LE_OS>(near, far)
-}
-
-/// [`crate::traverse`]'s `mask_by_words`: the OR of the entered children's words, narrowed by
-/// the ray's octant.
-#[target_feature(enable = "avx2")]
-#[inline]
-fn mask_by_words(words: &ChildWords, sel: &ChildSelect, lanes: __m256) -> u32 {
-    // SAFETY: both are arrays of 8 u32.
-    let (w, s) = unsafe {
-        (
-            _mm256_loadu_si256(words.w.as_ptr() as *const __m256i),
-            _mm256_loadu_si256(sel.w.as_ptr() as *const __m256i),
-        )
-    };
-    let m = _mm256_and_si256(_mm256_castps_si256(lanes), _mm256_and_si256(w, s));
-    let a = _mm_or_si128(_mm256_castsi256_si128(m), _mm256_extracti128_si256::<1>(m));
-    let b = _mm_or_si128(a, _mm_shuffle_epi32::<0b01_00_11_10>(a));
-    let c = _mm_or_si128(b, _mm_shuffle_epi32::<0b10_11_00_01>(b));
-    _mm_cvtsi128_si32(c) as u32
 }
 
 #[cfg(test)]

@@ -1,6 +1,5 @@
-//! Tests of the node test: its hit masks (byte planes, float planes, per-child words) against
-//! obvhs's, bit for bit, on random rays and real nodes; a −0.0 direction component; the
-//! per-node tables (bit counts, child words).
+//! Tests of the CWBVH node test: its hit masks against obvhs's, bit for bit, on random rays
+//! and real nodes; a −0.0 direction component; the bit-count table.
 use super::*;
 use crate::sampler::mix64;
 use obvhs::BvhBuildParams;
@@ -70,11 +69,6 @@ fn node_test_equals_obvhs_bit_for_bit() {
             let a = node_hits(node, &ray, oct);
             let b = node.intersect_ray(&ray, oct);
             differ += (a != b) as u32;
-            let sel = ChildSelect::new(ray.direction);
-            assert_eq!(sel.oct_inv4, oct);
-            let float = node_hits_float(&FloatPlanes::of(node), sel, &ray);
-            differ += (float != a) as u32;
-            differ += (node_hits_words(node, &ChildWords::of(node), sel, &ray) != a) as u32;
             hits += (a != 0) as u32;
         }
     }
@@ -128,38 +122,6 @@ fn ones_counts_the_bits_of_every_byte() {
     for b in 0..256u32 {
         assert_eq!(ONES[b as usize] as u32, b.count_ones(), "{b:#010b}");
     }
-}
-
-#[test]
-fn child_words_of_leaves_inner_and_empty_children() {
-    // Leaves of 2 slots at 0, 3 slots at 2 and 1 slot at 23; inner children in slots 3
-    // and 6 (meta 24 + slot); empty slots 5 and 7.
-    let node = CwBvhNode {
-        child_meta: [
-            0b0110_0000,
-            0b1110_0010,
-            0b0010_0000 | 23,
-            24 + 3,
-            0,
-            0,
-            24 + 6,
-            0,
-        ],
-        ..Default::default()
-    };
-    let w = ChildWords::of(&node).w;
-    assert_eq!(
-        w,
-        [0b11, 0b11100, 1 << 23, 0xff00_0000, 0, 0, 0xff00_0000, 0]
-    );
-    // A ray with all direction components negative has oct_inv4 0: inner child c keeps
-    // bit 24 + c; all positive: 7, so bit 24 + (c ^ 7).
-    let neg = ChildSelect::new(Vec3A::new(-1.0, -1.0, -1.0));
-    let pos = ChildSelect::new(Vec3A::new(1.0, 1.0, 1.0));
-    assert_eq!((neg.oct_inv4, pos.oct_inv4), (0, 0x0707_0707));
-    assert_eq!(w[3] & neg.w[3], 1 << 27);
-    assert_eq!(w[6] & pos.w[6], 1 << 25);
-    assert_eq!(w[2] & pos.w[2], 1 << 23);
 }
 
 fn obvhs_octant(bvh: &CwBvh, ray: &Ray) -> u32 {
