@@ -13,7 +13,7 @@ use crate::traverse::Leaves;
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
-use crate::wide_bvh::WideBvh;
+use crate::wide_bvh::{Node8, WideBvh};
 use crate::wide_walk::{WalkStack, walk8};
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
@@ -35,17 +35,15 @@ pub struct TriInfo {
     pub prim: u32,
 }
 
-/// An obvhs CWBVH over triangles, in whatever space they were given (world space for a
-/// flattened scene, object space for one mesh of an instanced scene).
+/// A BVH over triangles, in whatever space they were given (world space for a flattened
+/// scene, object space for one mesh of an instanced scene).
 pub struct Accel {
-    /// obvhs's structure with each node's `primitive_base_idx` a multiple of 4 (a padded slot),
-    /// and `primitive_indices` the input triangle of each padded slot (`u32::MAX`: padding).
-    bvh: CwBvh,
     /// Triangles in padded slot order, slot `s` in lane `s % 4` of block `s / 4`.
     packs: Vec<Tri4>,
     /// Per padded slot (padding: zero normal, ids `u32::MAX`).
     pub info: Vec<TriInfo>,
-    /// The nodes the queries walk: `bvh`'s, with float boxes and plain child references.
+    /// The nodes the queries walk: obvhs's CWBVH nodes with float boxes and plain child
+    /// references, each node's slots starting at a multiple of 4.
     wide: WideBvh,
     triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
@@ -151,17 +149,9 @@ impl Accel {
                 prim: t.prim,
             });
         }
-        bvh.primitive_indices = padded
-            .iter()
-            .map(|&old| match old {
-                u32::MAX => u32::MAX,
-                _ => bvh.primitive_indices[old as usize],
-            })
-            .collect();
         let triangles = kept.len();
         let wide = WideBvh::of(&bvh);
         Accel {
-            bvh,
             packs,
             info,
             wide,
@@ -326,11 +316,9 @@ impl Accel {
         RtTriangle::from(&self.packs[slot as usize / 4].get(slot as usize % 4))
     }
 
-    /// The obvhs structure itself (for diagnostics and the determinism tests), with the padded
-    /// slots of [`Accel`]'s layout in `primitive_base_idx` and `primitive_indices`: obvhs's own
-    /// primitive traversal and `validate` do not apply to it.
-    pub fn bvh(&self) -> &CwBvh {
-        &self.bvh
+    /// The nodes the queries walk, the root first (for diagnostics and the determinism tests).
+    pub fn nodes(&self) -> &[Node8] {
+        &self.wide.nodes
     }
 
     /// The nodes the queries walk.
@@ -345,10 +333,7 @@ impl Accel {
 
     /// Approximate heap size of the structure (BVH nodes, triangles, slot data).
     pub fn memory_bytes(&self) -> usize {
-        self.bvh.nodes.len()
-            * std::mem::size_of_val(&self.bvh.nodes[..].first().copied().unwrap_or_default())
-            + self.bvh.primitive_indices.len() * 4
-            + self.packs.len() * std::mem::size_of::<Tri4>()
+        self.packs.len() * std::mem::size_of::<Tri4>()
             + self.info.len() * std::mem::size_of::<TriInfo>()
             + self.wide.memory_bytes()
     }

@@ -85,6 +85,7 @@ pub use crate::material::Materials;
 pub use crate::revision::RENDER_REVISION;
 pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;
+pub use crate::wide_bvh::Node8;
 pub use crate::wide_walk::WalkStack;
 pub use obvhs::BvhBuildParams;
 pub use obvhs::cwbvh::Traversal;

@@ -1,7 +1,9 @@
 use super::*;
 use crate::InputTri;
-use crate::accel::Accel;
 use crate::isa::{Baseline, NodeTest, avx2};
+use obvhs::BvhBuildParams;
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use std::time::Duration;
 
 /// Three uniform numbers in [0, 1) from a counter hashed with `mix64`.
 fn p3(s: &mut u64) -> [f32; 3] {
@@ -35,8 +37,12 @@ fn avx2_node_tests_give_the_baseline_masks_bit_for_bit() {
         return;
     };
     let tris = soup(3000);
-    let accel = Accel::build(&tris);
-    let bvh = accel.bvh();
+    let input: Vec<_> = tris.iter().map(InputTri::triangle).collect();
+    let bvh = &build_cwbvh_from_tris(
+        &input,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
     let mut s = 11u64 << 32;
     let (mut compared, mut entered) = (0, 0);
     for k in 0..4000 {

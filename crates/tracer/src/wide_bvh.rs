@@ -13,7 +13,7 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
 
 /// One node: its eight children's boxes, and what each child is.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 pub struct Node8 {
     /// Min x, max x, min y, max y, min z, max z of the eight children, child c in lane c. An

@@ -46,11 +46,10 @@ fn build_in_pool(threads: usize, tris: &[InputTri], params: BvhBuildParams) -> A
         .install(|| Accel::build_with(tris, params))
 }
 
-/// FNV-1a over the nodes' and the primitive indices' bytes: a short name for a tree in a
-/// failure message.
+/// FNV-1a over the nodes' and the slots' ids: a short name for a tree in a failure message.
 fn tree_hash(a: &Accel) -> u64 {
-    let nodes = a.bvh().nodes.iter().map(|n| format!("{n:?}"));
-    let prims = a.bvh().primitive_indices.iter().map(|i| i.to_string());
+    let nodes = a.nodes().iter().map(|n| format!("{n:?}"));
+    let prims = a.info.iter().map(|i| format!("{} {}", i.instance, i.prim));
     nodes
         .chain(prims)
         .flat_map(String::into_bytes)
@@ -63,12 +62,11 @@ fn tree_hash(a: &Accel) -> u64 {
 /// primitive order and the same per-slot shading data.
 fn assert_identical(name: &str, tris: &[InputTri], params: BvhBuildParams) {
     let one = build_in_pool(1, tris, params);
-    assert!(one.bvh().nodes.len() > 1000, "{name}: a real tree");
+    assert!(one.nodes().len() > 1000, "{name}: a real tree");
     for threads in [2, 8] {
         let other = build_in_pool(threads, tris, params);
         assert!(
-            one.bvh().nodes == other.bvh().nodes
-                && one.bvh().primitive_indices == other.bvh().primitive_indices,
+            one.nodes() == other.nodes(),
             "{name}: the tree differs between 1 and {threads} threads (hash {:016x} vs {:016x})",
             tree_hash(&one),
             tree_hash(&other)
