@@ -9,12 +9,11 @@
 //! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
 //! together into the scene's two levels.
 use crate::isa::{Baseline, NodeTest};
-use crate::traverse::Leaves;
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
 use crate::wide_bvh::{Node8, WideBvh};
-use crate::wide_walk::{WalkStack, walk8};
+use crate::wide_walk::{Leaves, WalkStack, walk8};
 use glam::{Vec2, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::CwBvh;

@@ -11,12 +11,12 @@ use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
 
 mod query;
+use crate::wide_bvh::WideBvh;
 use crate::wide_walk::WalkStack;
 use eyeadapt_scene::{MaterialId, Scene};
 use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::cwbvh::{CwBvh, Traversal};
 use obvhs::ray::Ray;
 use rayon::prelude::*;
 use std::time::Duration;
@@ -43,7 +43,7 @@ enum Levels {
     /// Object-space structures per mesh under a structure over instances; `top_instance` maps
     /// a top-level slot to its instance.
     Two {
-        top: CwBvh,
+        top: WideBvh,
         top_instance: Vec<u32>,
         meshes: Vec<Accel>,
     },
@@ -65,7 +65,7 @@ pub struct Geometry {
 
 /// Per-ray traversal state, reused across the rays of a path.
 pub struct RayScratch {
-    top: Traversal,
+    top: WalkStack,
     bottom: WalkStack,
     /// The shadow ray's, while it is walked together with a path's next ray.
     shadow: WalkStack,
@@ -204,7 +204,7 @@ impl Geometry {
 
     pub fn scratch(&self) -> RayScratch {
         RayScratch {
-            top: Traversal::default(),
+            top: WalkStack::default(),
             bottom: WalkStack::default(),
             shadow: WalkStack::default(),
             crossings: Vec::new(),
@@ -332,9 +332,7 @@ impl Geometry {
                 top_instance,
                 meshes,
             } => {
-                top.nodes.len()
-                    * std::mem::size_of_val(&top.nodes.first().copied().unwrap_or_default())
-                    + top.primitive_indices.len() * 4
+                top.memory_bytes()
                     + top_instance.len() * 4
                     + meshes.iter().map(Accel::memory_bytes).sum::<usize>()
             }
@@ -444,7 +442,7 @@ fn two_levels(scene: &Scene) -> (Levels, Vec<Attributes>) {
         .collect();
     (
         Levels::Two {
-            top,
+            top: WideBvh::of(&top),
             top_instance,
             meshes,
         },

@@ -1,32 +1,24 @@
-//! Which node tests the walks run: the x86-64 baseline's SSE2 ones, or, on CPUs that have
-//! AVX2, the same tests on all eight children in one 256-bit register ([`crate::wide_test`]
-//! for each mesh's [`crate::wide_bvh::Node8`]s, [`crate::traverse_avx2`] for the CWBVH over
-//! the instances).
-//! Both give the same hit masks bit for bit (the same IEEE operations in the same order, one
-//! lane per child, and never FMA), so a farm that mixes old and new nodes still writes the same
-//! frames; `tests/cpu_features.rs` renders with each and compares the files.
+//! Which node test the walks run: the x86-64 baseline's SSE2 one (two halves of four
+//! children), or, on CPUs that have AVX2, the same test on all eight children of a
+//! [`crate::wide_bvh::Node8`] in one 256-bit register ([`crate::wide_test`]). Both give the
+//! same masks and entry distances bit for bit (the same IEEE operations in the same order, one
+//! lane per child, and never FMA), so the walks visit the same nodes in the same order and a
+//! farm that mixes old and new nodes still writes the same frames; `tests/cpu_features.rs`
+//! renders with each and compares the files.
 //!
 //! The ray queries that take the wide test are also compiled with BMI1, BMI2, LZCNT and POPCNT
-//! (integer bit operations every AVX2 CPU has: the walk's shifts, masks and bit scans in one
-//! instruction each; matpreview −1.4 % instructions), so the CPU must report those too.
+//! (integer bit operations every AVX2 CPU has: the walk's bit scans and masks in one
+//! instruction each), so the CPU must report those too.
 //!
 //! The choice is made once per process: AVX2 when the CPU reports it, unless the environment
 //! sets `EYEADAPT_SIMD=baseline` (for that comparison, and to rule the wide path out when
 //! chasing a problem).
 use crate::wide_bvh::Node8;
 use crate::wide_test::Slab;
-use obvhs::cwbvh::node::CwBvhNode;
-use obvhs::ray::Ray;
 use std::sync::OnceLock;
 
-/// The node tests of one instruction set.
+/// The node test of one instruction set.
 pub trait NodeTest: Copy {
-    /// [`crate::traverse`]'s CWBVH node test: the same mask as obvhs's
-    /// `CwBvhNode::intersect_ray`.
-    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32;
-    /// The number of set bits of `byte` (below 256): the walk's count of a node's inner
-    /// children before the one it enters.
-    fn ones8(self, byte: u32) -> u32;
     /// [`crate::wide_test`]'s box test of a [`Node8`]: the children entered within (ε, tmax)
     /// and their entry distances.
     fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]);
@@ -37,14 +29,6 @@ pub trait NodeTest: Copy {
 pub struct Baseline;
 
 impl NodeTest for Baseline {
-    #[inline(always)]
-    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
-        crate::traverse::node_hits(node, ray, oct_inv4)
-    }
-    #[inline(always)]
-    fn ones8(self, byte: u32) -> u32 {
-        crate::traverse::ONES[(byte & 0xff) as usize] as u32
-    }
     #[inline(always)]
     fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]) {
         crate::wide_test::node8_sse2(node, slab, tmax)
@@ -58,17 +42,6 @@ pub struct Avx2(());
 
 #[cfg(target_arch = "x86_64")]
 impl NodeTest for Avx2 {
-    #[inline(always)]
-    fn meta(self, node: &CwBvhNode, ray: &Ray, oct_inv4: u32) -> u32 {
-        // SAFETY: an `Avx2` is only made where the CPU has AVX2.
-        unsafe { crate::traverse_avx2::node_hits(node, ray, oct_inv4) }
-    }
-    #[inline(always)]
-    fn ones8(self, byte: u32) -> u32 {
-        // One POPCNT where inlined into the ray queries compiled with it (geometry/query.rs,
-        // accel_wide.rs); the portable count elsewhere. The same number either way.
-        (byte & 0xff).count_ones()
-    }
     #[inline(always)]
     fn node8(self, node: &Node8, slab: &Slab, tmax: f32) -> (u32, [f32; 8]) {
         // SAFETY: an `Avx2` is only made where the CPU has AVX2.

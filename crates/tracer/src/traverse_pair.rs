@@ -9,9 +9,8 @@
 //! Each walk takes exactly the steps it takes alone ([`Cursor8::step`]), with its own ray,
 //! stack and leaf test, so the results are those of two separate walks, bit for bit.
 use crate::isa::NodeTest;
-use crate::traverse::Leaves;
 use crate::wide_bvh::WideBvh;
-use crate::wide_walk::{Cursor8, WalkStack};
+use crate::wide_walk::{Cursor8, Leaves, WalkStack};
 use obvhs::ray::Ray;
 
 /// One walk's own part: its ray, its stack and its leaf test (as for

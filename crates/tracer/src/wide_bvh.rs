@@ -68,7 +68,14 @@ fn node8(n: &CwBvhNode) -> Node8 {
     };
     let e = n.compute_extent().to_array();
     let p = n.p.to_array();
-    let q = crate::traverse::plane_fields(n);
+    let q = [
+        &n.child_min_x,
+        &n.child_max_x,
+        &n.child_min_y,
+        &n.child_max_y,
+        &n.child_min_z,
+        &n.child_max_z,
+    ];
     for (c, &meta) in n.child_meta.iter().enumerate() {
         if meta == 0 {
             continue;

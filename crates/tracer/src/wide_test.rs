@@ -8,7 +8,6 @@
 //! ([`Slab`]), as Embree and PBRT do, so a node costs two operations per plane and no min/max
 //! to sort them. The far distance is scaled up by a few ulps (Ize, "Robust BVH Ray Traversal",
 //! JCGT 2013) so that rounding never drops a box the ray grazes.
-use crate::traverse::NODE_EPSILON;
 use crate::wide_bvh::Node8;
 use obvhs::ray::Ray;
 
@@ -23,6 +22,9 @@ pub struct Slab {
     near: [usize; 3],
     far: [usize; 3],
 }
+
+/// The least entry distance of a child (obvhs's node `EPSILON`, which the walk has kept).
+pub(crate) const NODE_EPSILON: f32 = 0.0001;
 
 /// 1 + 2γ₃ rounded up: the far distance's allowance for the rounding of (plane − o)·(1/d).
 pub(crate) const FAR_SCALE: f32 = 1.0 + 4.0 * f32::EPSILON;

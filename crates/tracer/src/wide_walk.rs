@@ -1,8 +1,9 @@
 //! The walk of a [`WideBvh`]: nearest child first, with the entry distances on the stack.
 //!
 //! At each node the eight boxes are tested together ([`crate::wide_test`]). The node's leaf
-//! children that the ray enters are handed over together, as slot bits (the [`Leaves`] of
-//! [`crate::traverse`], so the leaf tests are the CWBVH walk's), and may shorten the ray. Of
+//! children that the ray enters are handed over together, as slot bits ([`Leaves`]: a mesh
+//! tests its triangles four at a time, the instance level each instance's mesh), and may
+//! shorten the ray. Of
 //! the inner children entered, a lone one is entered directly; several are pushed farthest
 //! first, so that the nearest is on top. A popped child is skipped when a hit found since it
 //! was pushed is nearer than its box.
@@ -12,11 +13,28 @@
 //! later one is entered first. A walk that only asks whether anything is hit (a shadow ray),
 //! or wants every hit, gains nothing from the order: it pushes in child order, unsorted
 //! (`ORDERED` false; shadow rays 2-5 % fewer instructions).
+use crate::accel::SlotHit;
 use crate::isa::NodeTest;
-use crate::traverse::Leaves;
 use crate::wide_bvh::WideBvh;
 use crate::wide_test::Slab;
 use obvhs::ray::Ray;
+
+/// What a walk does with an entered node's hit leaves: `visit(base, mask, ray)` gets slot
+/// `base + i` for each set bit i of `mask` (at most 24 bits), may shorten `ray.tmax` (the
+/// node tests after it see the shorter ray), and returns true to stop the walk. Any such
+/// closure is one; [`crate::accel`]'s leaf tests are types of their own whose `visit` is
+/// inlined into the walk (a closure's body may stay a call, with the walk's state spilled
+/// around it).
+pub trait Leaves {
+    fn visit(&mut self, base: u32, mask: u32, ray: &mut Ray) -> bool;
+}
+
+impl<F: FnMut(u32, u32, &mut Ray) -> bool> Leaves for F {
+    #[inline(always)]
+    fn visit(&mut self, base: u32, mask: u32, ray: &mut Ray) -> bool {
+        self(base, mask, ray)
+    }
+}
 
 /// A child waiting on the stack: its node index and the distance at which the ray enters it.
 #[derive(Clone, Copy, Debug, Default)]
@@ -120,8 +138,7 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
 }
 
 /// Walks the nodes `ray` enters (nearest first if `ORDERED`) and hands each entered node's
-/// hit leaf triangles to `leaves` (as [`crate::traverse::walk`] does), which may shorten the
-/// ray and stop the walk.
+/// hit leaf slots to `leaves`, which may shorten the ray and stop the walk.
 #[inline(always)]
 pub fn walk8<const ORDERED: bool>(
     bvh: &WideBvh,
@@ -134,6 +151,67 @@ pub fn walk8<const ORDERED: bool>(
         return;
     };
     while !at.step(bvh, ray, stack, &mut leaves) {}
+}
+
+/// The closest primitive `ray` hits (distance and slot), if any. `prim_hit(slot, ray)` is the
+/// distance to primitive `slot` within the ray's current (tmin, tmax), or +∞: for the instance
+/// level, the closest hit inside one instance. A node's slots are tested highest first; of
+/// equal distances the first tested wins.
+#[inline(always)]
+pub fn closest_hit8(
+    bvh: &WideBvh,
+    isa: impl NodeTest,
+    ray: Ray,
+    stack: &mut WalkStack,
+    mut prim_hit: impl FnMut(u32, &Ray) -> f32,
+) -> Option<SlotHit> {
+    let mut best = None;
+    let leaves = |base: u32, mask: u32, r: &mut Ray| {
+        each_slot(base, mask, |slot| {
+            let t = prim_hit(slot, r);
+            if t < r.tmax {
+                best = Some(SlotHit { t, slot });
+                r.tmax = t;
+            }
+            false
+        })
+    };
+    walk8::<true>(bvh, isa, &mut { ray }, stack, leaves);
+    best
+}
+
+/// True when no primitive blocks `ray` within its (tmin, tmax); `prim_hit` as for
+/// [`closest_hit8`] (any distance below tmax blocks).
+#[inline(always)]
+pub fn unoccluded8(
+    bvh: &WideBvh,
+    isa: impl NodeTest,
+    ray: Ray,
+    stack: &mut WalkStack,
+    mut prim_hit: impl FnMut(u32, &Ray) -> f32,
+) -> bool {
+    let mut free = true;
+    let leaves = |base: u32, mask: u32, r: &mut Ray| {
+        let blocked = each_slot(base, mask, |slot| prim_hit(slot, r) < r.tmax);
+        free &= !blocked;
+        blocked
+    };
+    walk8::<false>(bvh, isa, &mut { ray }, stack, leaves);
+    free
+}
+
+/// Calls `visit(base + i)` for each set bit i of `mask`, highest first, until it returns true;
+/// returns whether one did.
+#[inline(always)]
+fn each_slot(base: u32, mut mask: u32, mut visit: impl FnMut(u32) -> bool) -> bool {
+    while mask != 0 {
+        let bit = 31 - mask.leading_zeros();
+        mask &= !(1 << bit);
+        if visit(base + bit) {
+            return true;
+        }
+    }
+    false
 }
 
 #[cfg(test)]

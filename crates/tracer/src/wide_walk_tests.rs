@@ -174,3 +174,38 @@ fn a_deep_structure_grows_the_stack_and_still_finds_every_closest_hit() {
     );
     assert!(hits > 300, "{hits}");
 }
+
+#[test]
+fn a_negative_zero_direction_component_still_hits() {
+    // A wall of triangles at z = 5 + 0.01 i in front of rays whose x component is ±0 (1/d is
+    // then ∓ a large number, and the near plane must follow its sign).
+    let tris: Vec<InputTri> = (0..64)
+        .map(|i| {
+            let (x, z) = (i as f32 * 0.25 - 8.0, 5.0 + 0.01 * i as f32);
+            InputTri {
+                v: [
+                    Vec3A::new(x, -1.0, z),
+                    Vec3A::new(x + 0.25, -1.0, z),
+                    Vec3A::new(x, 1.0, z),
+                ],
+                instance: 0,
+                prim: i,
+            }
+        })
+        .collect();
+    let accel = Accel::build(&tris);
+    for dx in [0.0f32, -0.0] {
+        let ray = Ray::new(
+            Vec3A::new(0.1, -0.5, 0.0),
+            Vec3A::new(dx, 0.0, 1.0),
+            0.0,
+            100.0,
+        );
+        let t = accel.closest(&ray, &mut WalkStack::default()).map(|h| h.t);
+        assert!(
+            (t.unwrap_or(f32::INFINITY) - 5.32).abs() < 1e-4,
+            "dx = {dx:?}: {t:?}"
+        );
+        assert!(!accel.unblocked(&ray, &mut WalkStack::default()));
+    }
+}

@@ -52,18 +52,19 @@ impl Geometry {
             } => {
                 let mut best = (0u32, 0u32);
                 let bottom = &mut scratch.bottom;
-                let h = crate::traverse::closest_hit(top, test, ray, &mut scratch.top, |k, r| {
-                    let i = top_instance[k as usize];
-                    let inst = &self.instances[i as usize];
-                    let local = object_ray(inst, r);
-                    match meshes[inst.mesh as usize].closest_with(test, &local, bottom) {
-                        Some(h) => {
-                            best = (i, h.slot);
-                            h.t
+                let h =
+                    crate::wide_walk::closest_hit8(top, test, ray, &mut scratch.top, |k, r| {
+                        let i = top_instance[k as usize];
+                        let inst = &self.instances[i as usize];
+                        let local = object_ray(inst, r);
+                        match meshes[inst.mesh as usize].closest_with(test, &local, bottom) {
+                            Some(h) => {
+                                best = (i, h.slot);
+                                h.t
+                            }
+                            None => f32::INFINITY,
                         }
-                        None => f32::INFINITY,
-                    }
-                })?;
+                    })?;
                 let (instance, slot) = best;
                 let prim = meshes[self.instances[instance as usize].mesh as usize].info
                     [slot as usize]
@@ -117,7 +118,7 @@ impl Geometry {
                 meshes,
             } => {
                 let bottom = &mut scratch.bottom;
-                crate::traverse::unoccluded(top, test, ray, &mut scratch.top, |k, r| {
+                crate::wide_walk::unoccluded8(top, test, ray, &mut scratch.top, |k, r| {
                     let inst = &self.instances[top_instance[k as usize] as usize];
                     let local = object_ray(inst, r);
                     if meshes[inst.mesh as usize].unblocked_with(test, &local, bottom) {
@@ -184,7 +185,7 @@ impl Geometry {
                 meshes,
             } => {
                 let bottom = &mut scratch.bottom;
-                !crate::traverse::unoccluded(top, test, ray, &mut scratch.top, |k, r| {
+                !crate::wide_walk::unoccluded8(top, test, ray, &mut scratch.top, |k, r| {
                     let instance = top_instance[k as usize];
                     let inst = &self.instances[instance as usize];
                     let mesh = &meshes[inst.mesh as usize];
