@@ -19,8 +19,8 @@ pub struct Slab {
     inv: [f32; 3],
     /// Per axis: the plane row (below 6) the ray enters by (min where 1/d ≥ 0, max otherwise)
     /// and the one it leaves by.
-    near: [usize; 3],
-    far: [usize; 3],
+    near: [u32; 3],
+    far: [u32; 3],
 }
 
 /// The least entry distance of a child (obvhs's node `EPSILON`, which the walk has kept).
@@ -33,7 +33,8 @@ impl Slab {
     #[inline(always)]
     pub fn new(ray: &Ray) -> Slab {
         let inv = ray.inv_direction.to_array();
-        let near = [0, 1, 2].map(|a| 2 * a + (inv[a] < 0.0) as usize);
+        // The sign bit is 1/d < 0: obvhs's 1/d is never ±0.
+        let near = [0, 1, 2].map(|a| 2 * a as u32 + (inv[a].to_bits() >> 31));
         Slab {
             origin: ray.origin.to_array(),
             inv,
@@ -56,9 +57,9 @@ pub fn node8_sse2(node: &Node8, s: &Slab, tmax: f32) -> (u32, [f32; 8]) {
     // loads are aligned).
     unsafe {
         for h in 0..2 {
-            let t = |row: usize, a: usize| {
+            let t = |row: u32, a: usize| {
                 // `row` is below 6 (`Slab::new`).
-                let q = _mm_load_ps(node.planes.get_unchecked(row).as_ptr().add(4 * h));
+                let q = _mm_load_ps(node.planes.get_unchecked(row as usize).as_ptr().add(4 * h));
                 _mm_mul_ps(
                     _mm_sub_ps(q, _mm_set1_ps(s.origin[a])),
                     _mm_set1_ps(s.inv[a]),
@@ -88,7 +89,7 @@ pub unsafe fn node8_avx2(node: &Node8, s: &Slab, tmax: f32) -> (u32, [f32; 8]) {
     use std::arch::x86_64::*;
     // SAFETY: the rows a `Slab` names are below 6; each row is 8 floats, 32-byte aligned
     // (`Node8` is 64-byte aligned).
-    let row = |r: usize| unsafe { _mm256_load_ps(node.planes.get_unchecked(r).as_ptr()) };
+    let row = |r: u32| unsafe { _mm256_load_ps(node.planes.get_unchecked(r as usize).as_ptr()) };
     let (o, inv) = (s.origin, s.inv);
     let (ox, oy, oz) = (
         _mm256_set1_ps(o[0]),
@@ -130,7 +131,7 @@ pub fn node8_sse2(node: &Node8, s: &Slab, tmax: f32) -> (u32, [f32; 8]) {
     let mut near_out = [0.0f32; 8];
     let mut mask = 0;
     for c in 0..8 {
-        let t = |row: usize, a: usize| (node.planes[row][c] - s.origin[a]) * s.inv[a];
+        let t = |row: u32, a: usize| (node.planes[row as usize][c] - s.origin[a]) * s.inv[a];
         let near = t(s.near[0], 0)
             .max(t(s.near[1], 1))
             .max(t(s.near[2], 2).max(NODE_EPSILON));
