@@ -63,36 +63,11 @@ pub fn walk_pair<La: Leaves, Lb: Leaves>(
 
 #[cfg(test)]
 mod tests {
-    use crate::InputTri;
     use crate::accel::Accel;
     use crate::isa::{Baseline, NodeTest};
     use crate::wide_walk::WalkStack;
-    use glam::Vec3A;
+    use crate::wide_walk::tests::{p3, soup};
     use obvhs::ray::Ray;
-
-    fn p3(s: &mut u64) -> Vec3A {
-        Vec3A::from([0, 1, 2].map(|_| {
-            *s += 1;
-            (crate::mix64(*s) >> 40) as f32 / (1u64 << 24) as f32
-        }))
-    }
-
-    /// Random triangles, some tiny, some long, in a 20-unit cube.
-    fn soup(n: usize) -> Vec<InputTri> {
-        let mut s = 3u64 << 32;
-        (0..n)
-            .map(|k| {
-                let c = p3(&mut s) * 20.0 - 10.0;
-                let size = if k % 3 == 0 { 0.01 } else { 2.0 };
-                let mut e = || (p3(&mut s) - 0.5) * size;
-                InputTri {
-                    v: [c, c + e(), c + e()],
-                    instance: 0,
-                    prim: k as u32,
-                }
-            })
-            .collect()
-    }
 
     /// Walked together or one after the other, a closest-hit ray and a shadow ray get the
     /// same answers, on every instruction set here.
@@ -129,7 +104,7 @@ mod tests {
 
     #[test]
     fn walking_two_rays_together_answers_what_walking_them_apart_does() {
-        let tris = soup(4000);
+        let tris = soup(4000, 3);
         let accel = Accel::build(&tris);
         compare(&accel, Baseline, "baseline");
         #[cfg(target_arch = "x86_64")]

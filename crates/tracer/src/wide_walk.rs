@@ -216,4 +216,4 @@ fn each_slot(base: u32, mut mask: u32, mut visit: impl FnMut(u32) -> bool) -> bo
 
 #[cfg(test)]
 #[path = "wide_walk_tests.rs"]
-mod tests;
+pub(crate) mod tests;

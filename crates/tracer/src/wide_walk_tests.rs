@@ -6,7 +6,7 @@ use crate::wide_bvh::Node8;
 use glam::Vec3A;
 
 /// Three uniform numbers in [0, 1) from a counter hashed with `mix64`.
-fn p3(s: &mut u64) -> Vec3A {
+pub(crate) fn p3(s: &mut u64) -> Vec3A {
     Vec3A::from([0, 1, 2].map(|_| {
         *s += 1;
         (crate::mix64(*s) >> 40) as f32 / (1u64 << 24) as f32
@@ -14,7 +14,7 @@ fn p3(s: &mut u64) -> Vec3A {
 }
 
 /// Random triangles (a third tiny, the rest up to 2 long) in a 20-unit cube.
-fn soup(n: usize, seed: u64) -> Vec<InputTri> {
+pub(crate) fn soup(n: usize, seed: u64) -> Vec<InputTri> {
     let mut s = seed << 32;
     (0..n)
         .map(|k| {
