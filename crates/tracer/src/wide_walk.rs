@@ -3,10 +3,9 @@
 //! At each node the eight boxes are tested together ([`crate::wide_test`]). The node's leaf
 //! children that the ray enters are handed over together, as slot bits ([`Leaves`]: a mesh
 //! tests its triangles four at a time, the instance level each instance's mesh), and may
-//! shorten the ray. Of
-//! the inner children entered, a lone one is entered directly; several are pushed farthest
-//! first, so that the nearest is on top. A popped child is skipped when a hit found since it
-//! was pushed is nearer than its box.
+//! shorten the ray. Of the inner children entered, a lone one is entered directly; several
+//! are pushed farthest first, so that the nearest is on top. A popped child is skipped when a
+//! hit found since it was pushed is nearer than its box.
 //!
 //! The order depends only on the distances, which are the same bits on every instruction set,
 //! so the walk visits the same nodes in the same order everywhere; of equally near children the
