@@ -11,7 +11,9 @@
 //! so the walk visits the same nodes in the same order everywhere; of equally near children the
 //! later one is entered first. A walk that only asks whether anything is hit (a shadow ray),
 //! or wants every hit, gains nothing from the order: it pushes in child order, unsorted
-//! (`ORDERED` false; shadow rays 2-5 % fewer instructions).
+//! (`ORDERED` false; shadow rays 2-5 % fewer instructions). Its leaves never shorten the ray,
+//! so every child it pushed is still within reach when popped, and it skips that check
+//! (2.6 % fewer).
 use crate::accel::SlotHit;
 use crate::isa::NodeTest;
 use crate::wide_bvh::WideBvh;
@@ -98,7 +100,7 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
         let mut inner = mask & !node.leaves;
         if inner != 0 && inner & (inner - 1) == 0 {
             let c = (inner.trailing_zeros() & 7) as usize;
-            if near[c] <= ray.tmax {
+            if !ORDERED || near[c] <= ray.tmax {
                 self.node = node.child[c];
                 return false;
             }
@@ -127,7 +129,7 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
         while self.height > 0 {
             self.height -= 1;
             let e = stack.entries[self.height];
-            if e.t <= ray.tmax {
+            if !ORDERED || e.t <= ray.tmax {
                 self.node = e.node;
                 return false;
             }
@@ -136,8 +138,10 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
     }
 }
 
-/// Walks the nodes `ray` enters (nearest first if `ORDERED`) and hands each entered node's
-/// hit leaf slots to `leaves`, which may shorten the ray and stop the walk.
+/// Walks the nodes `ray` enters and hands each entered node's hit leaf slots to `leaves`,
+/// which may stop the walk. `ORDERED`: nearest child first, and `leaves` may shorten the ray
+/// (a closest-hit walk); otherwise child order, and `leaves` must leave the ray as it is (a
+/// shadow or every-hit walk).
 #[inline(always)]
 pub fn walk8<const ORDERED: bool>(
     bvh: &WideBvh,
