@@ -1,8 +1,9 @@
 //! The scene's geometry for ray queries, in two levels: an [`Accel`] per unique mesh in object
 //! space and a [`WideBvh`] over the instances' world-space boxes (both obvhs builds decoded to
-//! float eight-wide nodes), so memory grows with the unique meshes, not with the instances. When no mesh is placed twice, every triangle is
-//! put into one world-space [`Accel`] instead (the flat layout): nothing is shared then, and one
-//! traversal without per-instance ray transforms is faster.
+//! float eight-wide nodes), so memory grows with the unique meshes, not with the instances.
+//! When no mesh is placed twice, every triangle is put into one world-space [`Accel`] instead
+//! (the flat layout): nothing is shared then, and one traversal without per-instance ray
+//! transforms is faster.
 //!
 //! Hits name the instance, the mesh's triangle and the barycentrics; [`Geometry::interaction`]
 //! turns one into a [`SurfaceInteraction`].

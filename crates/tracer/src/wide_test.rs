@@ -18,7 +18,8 @@ pub struct Slab {
     /// 1/d as obvhs makes it (finite, with the sign of d, −0 counting as negative).
     inv: [f32; 3],
     /// Per axis: the plane row (below 6) the ray enters by (min where 1/d ≥ 0, max otherwise)
-    /// and the one it leaves by.
+    /// and the one it leaves by. `far` is `near ^ 1`, kept rather than derived at each node:
+    /// deriving it cost 0.8 % more instructions per closest-hit ray.
     near: [u32; 3],
     far: [u32; 3],
 }
