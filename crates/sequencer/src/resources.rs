@@ -10,7 +10,7 @@
 //!   pixel from 1024² to 2048² (230 MB → 898 MB, also with every estimator, and the same for
 //!   a one-frame `sequence`).
 //! - [`BYTES_PER_TRIANGLE`] per triangle: the scene's mesh, the BVH input, the obvhs build
-//!   (BVH2 then CWBVH), the BVH-ordered triangles and the per-slot shading data. Measured:
+//!   (its binary BVH, collapsed to eight-wide nodes), the BVH-ordered triangles and the per-slot shading data. Measured:
 //!   454 B per triangle from 0.33 M to 2.6 M triangles (147 MB → 1.14 GB).
 //!
 //! The limit is the least of: physical memory (`MemTotal` from `/proc/meminfo`); the memory

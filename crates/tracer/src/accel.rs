@@ -1,13 +1,12 @@
-//! Closest-hit and shadow queries over a set of triangles: obvhs builds a CWBVH, whose nodes
-//! are then decoded into float eight-wide nodes ([`WideBvh`]) that the queries walk nearest
-//! child first ([`crate::wide_walk`]).
+//! Closest-hit and shadow queries over a set of triangles: obvhs builds a binary BVH, which
+//! [`crate::collapse`] turns into eight-wide nodes ([`WideBvh`]) with every leaf one block of
+//! four triangles; the queries walk them nearest child first ([`crate::wide_walk`]).
 //!
-//! Triangles are copied into BVH order once (obvhs reports *slots*, not triangle indices), and
-//! per-slot ids live in a parallel array, so the hot loop never looks anything up through
-//! `primitive_indices`. The copy is in blocks of four ([`Tri4`]) with each node's triangles
-//! starting a block, so that a node's hit triangles are tested four at a time; the nodes'
-//! `primitive_base_idx` are rewritten to these padded slots. [`crate::geometry`] puts these
-//! together into the scene's two levels.
+//! Triangles are copied into BVH order once, in blocks of four ([`Tri4`]), each leaf's in a
+//! block of its own (padded), and per-slot ids live in a parallel array, so the hot loop never
+//! looks anything up through an index list and a leaf is one four-lane test. [`crate::geometry`]
+//! puts these together into the scene's two levels.
+use crate::collapse::collapse;
 use crate::isa::{Baseline, NodeTest};
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
@@ -15,14 +14,16 @@ use crate::triangle::normal_and_area;
 use crate::wide_bvh::{Node8, WideBvh};
 use crate::wide_walk::{Leaves, WalkStack, walk8};
 use glam::{Vec2, Vec3A};
-use obvhs::BvhBuildParams;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh_from_tris;
-use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::ploc::PlocBuilder;
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
+use obvhs::splits::split_aabbs_preset;
 use obvhs::triangle::Triangle;
-use std::time::Duration;
+use obvhs::{Boundable, BvhBuildParams};
+use rayon::prelude::*;
 
 /// What one BVH slot holds besides its triangle.
 #[derive(Clone, Copy, Debug)]
@@ -41,8 +42,7 @@ pub struct Accel {
     packs: Vec<Tri4>,
     /// Per padded slot (padding: zero normal, ids `u32::MAX`).
     pub info: Vec<TriInfo>,
-    /// The nodes the queries walk: obvhs's CWBVH nodes with float boxes and plain child
-    /// references, each node's slots starting at a multiple of 4.
+    /// The nodes the queries walk, each leaf child one block of `packs`.
     wide: WideBvh,
     triangles: usize,
     /// Triangles skipped because they have no area (they cannot be hit and must not yield NaN normals).
@@ -124,32 +124,38 @@ impl Accel {
             lo = Vec3A::ZERO;
             hi = Vec3A::ZERO;
         }
-        let mut bvh = build_cwbvh_from_tris(&tris, params, &mut Duration::default());
-        let padded = pad_leaves(&mut bvh);
-        let mut info = Vec::with_capacity(padded.len());
-        let mut packs = vec![Tri4::default(); padded.len() / 4];
-        for (slot, &old) in padded.iter().enumerate() {
-            if old == u32::MAX {
-                info.push(TriInfo {
-                    ng: Vec3A::ZERO,
-                    instance: u32::MAX,
-                    prim: u32::MAX,
-                });
-                continue;
-            }
-            let i = bvh.primitive_indices[old as usize] as usize;
-            let t = kept[i];
-            packs[slot / 4].set(slot % 4, &tris[i]);
-            info.push(TriInfo {
-                ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
-                    .expect("kept triangles have an area")
-                    .0,
-                instance: t.instance,
-                prim: t.prim,
+        let (nodes, slots) = collapse(&binary_bvh(&tris, params));
+        // Block by block, side by side: each block's triangles and shading data depend on
+        // its slots alone.
+        let padding = TriInfo {
+            ng: Vec3A::ZERO,
+            instance: u32::MAX,
+            prim: u32::MAX,
+        };
+        let mut info = vec![padding; slots.len()];
+        let mut packs = vec![Tri4::default(); slots.len() / 4];
+        packs
+            .par_iter_mut()
+            .zip(info.par_chunks_mut(4))
+            .zip(slots.par_chunks(4))
+            .for_each(|((pack, info), slots)| {
+                for (lane, (&i, info)) in slots.iter().zip(info).enumerate() {
+                    if i == u32::MAX {
+                        continue;
+                    }
+                    let (i, t) = (i as usize, kept[i as usize]);
+                    pack.set(lane, &tris[i]);
+                    *info = TriInfo {
+                        ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
+                            .expect("kept triangles have an area")
+                            .0,
+                        instance: t.instance,
+                        prim: t.prim,
+                    };
+                }
             });
-        }
         let triangles = kept.len();
-        let wide = WideBvh::of(&bvh);
+        let wide = WideBvh::from_nodes(nodes);
         Accel {
             packs,
             info,
@@ -428,31 +434,31 @@ fn for_blocks(base: u32, mut mask: u32, mut test: impl FnMut(u32, u32) -> bool) 
     false
 }
 
-/// Moves each node's triangles to start at a multiple of 4 and returns, per new slot, the
-/// node's old slot there (`u32::MAX` for the padding after a node's last triangle). A node's
-/// triangles are those its leaf children name: child `c` holds `popcount(meta >> 5)` slots
-/// from `meta & 31` on.
-fn pad_leaves(bvh: &mut CwBvh) -> Vec<u32> {
-    let mut padded = Vec::with_capacity(bvh.primitive_indices.len() * 5 / 4 + 4);
-    for node in &mut bvh.nodes {
-        let count = leaf_slots(node);
-        if count == 0 {
-            continue;
-        }
-        let base = padded.len() as u32;
-        padded.extend((0..count).map(|k| node.primitive_base_idx + k));
-        padded.resize(padded.len().next_multiple_of(4), u32::MAX);
-        node.primitive_base_idx = base;
-    }
-    padded
+/// obvhs's binary BVH of `tris` with `params`: its PLOC build (after its spatial pre-splits
+/// when the preset asks for them) and its reinsertion, as its CWBVH builder makes them.
+fn binary_bvh(tris: &[Triangle], params: BvhBuildParams) -> Bvh2 {
+    let mut bvh = if params.pre_split && !tris.is_empty() {
+        let mut aabbs: Vec<Aabb> = tris.iter().map(Triangle::aabb).collect();
+        let largest = aabbs.iter().map(Aabb::half_area).fold(0.0, f32::max);
+        let average = aabbs.iter().map(Aabb::half_area).sum::<f32>() / aabbs.len() as f32;
+        let mut indices = (0..tris.len() as u32).collect();
+        split_aabbs_preset(&mut aabbs, &mut indices, tris, average, largest);
+        let mut b = ploc(&aabbs, indices, params);
+        b.uses_spatial_splits = true;
+        b
+    } else {
+        ploc(tris, (0..tris.len() as u32).collect(), params)
+    };
+    ReinsertionOptimizer::default().run(&mut bvh, params.reinsertion_batch_ratio, None);
+    bvh
 }
 
-/// How many slots from `primitive_base_idx` on the node's leaf children cover.
-fn leaf_slots(node: &CwBvhNode) -> u32 {
-    let (child_bits, bit_index) = node.get_child_and_index_bits(0);
-    let mut all = 0u32;
-    for c in 0..8 {
-        all |= ((child_bits >> (8 * c)) as u32 & 0xff) << ((bit_index >> (8 * c)) as u32 & 0xff);
-    }
-    32 - (all & 0x00ff_ffff).leading_zeros()
+fn ploc<T: Boundable>(prims: &[T], indices: Vec<u32>, params: BvhBuildParams) -> Bvh2 {
+    PlocBuilder::with_capacity(prims.len()).build(
+        params.ploc_search_distance,
+        prims,
+        indices,
+        params.sort_precision,
+        params.search_depth_threshold,
+    )
 }

@@ -1,6 +1,7 @@
-//! obvhs's own CWBVH build, timed apart from [`Accel::build_with`](crate::Accel::build_with)
-//! by `eyeadapt bench --bvh-triangles`: what a build preset can change (obvhs) and what it
-//! cannot (the renderer's filtering, the copy into BVH order, shading data).
+//! obvhs's own CWBVH build (its PLOC build, reinsertion and collapse to its compressed wide
+//! nodes), timed next to [`Accel::build_with`](crate::Accel::build_with) by `eyeadapt bench
+//! --bvh-triangles`: a peer for the renderer's build, which shares obvhs's PLOC build and
+//! reinsertion and collapses the binary BVH itself ([`crate::collapse`]).
 use crate::accel::InputTri;
 use obvhs::BvhBuildParams;
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;

@@ -1,5 +1,5 @@
-//! The renderer: two levels of eight-wide BVHs built by obvhs ([`Geometry`] over per-mesh
-//! [`Accel`]s, whose nodes are decoded to floats and walked nearest child first), materials
+//! The renderer: two levels of eight-wide BVHs over obvhs's builds ([`Geometry`] over per-mesh
+//! [`Accel`]s, whose nodes have float boxes and are walked nearest child first), materials
 //! evaluated per hit with their textures ([`Materials`]), stateless Owen-scrambled Sobol sampling
 //! ([`SampleStream`]), BSDFs, the light set (with environment maps, [`Environment`], sampled
 //! through a [`Distribution2D`] or through light portals in the openings of an interior), a
@@ -18,6 +18,7 @@ mod bilinear;
 mod bsdf;
 mod bump;
 mod bvh_bench;
+mod collapse;
 mod dielectric;
 mod distribution2d;
 mod emitter;

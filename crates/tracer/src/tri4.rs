@@ -1,7 +1,7 @@
 //! Four triangles tested against one ray at once: the BVH's triangles stored four to a block
-//! (structure of arrays), so one SSE2 test covers up to four slots of a leaf. A CWBVH node
-//! lists up to 24 triangles; [`crate::accel`] lays each node's out from a block boundary, so
-//! the node's hit mask splits into one 4-bit lane mask per block.
+//! (structure of arrays), so one SSE2 test covers up to four slots of a leaf. Each leaf of a
+//! mesh's structure is one block ([`crate::collapse`]), so a node's hit leaves' slot bits
+//! split into one 4-bit lane mask per block.
 //!
 //! The test is Woop, Benthin and Wald's watertight one ("Watertight Ray/Triangle
 //! Intersection", JCGT 2013): the vertices, relative to the ray origin, are sheared into a

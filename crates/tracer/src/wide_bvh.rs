@@ -1,7 +1,9 @@
-//! The bottom-level structure the renderer walks ([`crate::wide_walk`]): obvhs's CWBVH
-//! topology (its build, its eight-wide nodes and its leaves) with each node's child boxes
-//! decoded once into full-precision floats, rounded outward, and each child's reference ready
-//! to use: an inner child's node index, a leaf child's slot bits.
+//! The structure the renderer walks ([`crate::wide_walk`]): eight-wide nodes with each
+//! child's box in full-precision floats and its reference ready to use (an inner child's node
+//! index, a leaf child's slot bits). A mesh's nodes are collapsed from obvhs's binary BVH
+//! ([`crate::collapse`]); the instance level's are obvhs's CWBVH topology (its build, its
+//! eight-wide nodes and its leaves) with each node's child boxes decoded once into floats,
+//! rounded outward ([`WideBvh::of`]).
 //!
 //! The CWBVH walk spends about as many instructions on its compressed layout (the octant
 //! bit tricks that find an inner child's index, the node groups on its stack) as on the box
@@ -19,13 +21,24 @@ pub struct Node8 {
     /// Min x, max x, min y, max y, min z, max z of the eight children, child c in lane c. An
     /// empty child's minima are +∞ and its maxima −∞, so no ray enters it.
     pub(crate) planes: [[f32; 8]; 6],
-    /// An inner child's node index; a leaf child's slot bits (bit i: slot `prim_base + i`,
-    /// below bit 24); 0 for an empty child.
+    /// An inner child's node index; a leaf child's slot bits (bit i: slot `prim_base + i`;
+    /// below bit 24 in a CWBVH's node, one block's four bits in a mesh's); 0 for an empty
+    /// child.
     pub(crate) child: [u32; 8],
     /// The first slot of the node's leaf children (a multiple of 4 in [`crate::Accel`]).
     pub(crate) prim_base: u32,
     /// Bit c: child c is a leaf.
     pub(crate) leaves: u32,
+}
+
+impl Node8 {
+    /// A node of eight empty children.
+    pub(crate) const EMPTY: Node8 = Node8 {
+        planes: EMPTY,
+        child: [0; 8],
+        prim_base: 0,
+        leaves: 0,
+    };
 }
 
 /// A CWBVH's nodes as [`Node8`]s, in the same order (node 0 is the root).
@@ -40,6 +53,11 @@ impl WideBvh {
         WideBvh {
             nodes: bvh.nodes.iter().map(node8).collect(),
         }
+    }
+
+    /// Nodes made elsewhere (a mesh's, [`crate::collapse`]).
+    pub(crate) fn from_nodes(nodes: Vec<Node8>) -> WideBvh {
+        WideBvh { nodes }
     }
 
     pub fn memory_bytes(&self) -> usize {
@@ -61,10 +79,8 @@ const EMPTY: [[f32; 8]; 6] = {
 
 fn node8(n: &CwBvhNode) -> Node8 {
     let mut out = Node8 {
-        planes: EMPTY,
-        child: [0; 8],
         prim_base: n.primitive_base_idx,
-        leaves: 0,
+        ..Node8::EMPTY
     };
     let e = n.compute_extent().to_array();
     let p = n.p.to_array();

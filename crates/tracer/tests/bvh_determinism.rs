@@ -1,5 +1,7 @@
 //! The BVH is part of what makes a render's bits: obvhs builds it in parallel (rayon joins,
-//! chunks sized by `current_num_threads`, rdst radix sorts), so the node array and the
+//! chunks sized by `current_num_threads`, rdst radix sorts) and the tracer collapses it to
+//! eight-wide nodes in parallel (`collapse.rs`: rayon joins and one task per subtree below
+//! its first nodes), so the node array and the
 //! triangle order must come out identical for any thread count, with every preset the
 //! renderer may pick (`build_params`).
 use eyeadapt_tracer::{Accel, BvhBuildParams, InputTri, build_params};
