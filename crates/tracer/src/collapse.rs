@@ -11,11 +11,13 @@
 //!    (`BLOCK_COST` against `LEVEL_COST` per binary level an eight-wide node stands for).
 //! 2. Top down, a node takes its binary children and opens the largest (by surface area)
 //!    that is not a leaf, until it has eight or none is left to open (as Embree's BVH8
-//!    builders do); its leaf children each get a block of their own, its inner children the
-//!    next nodes in breadth-first order.
+//!    builders do); its leaf children each get a block of their own, its inner children
+//!    nodes of their own: the first breadth first, until 64 subtrees are left, then each of
+//!    those depth first on any thread, appended in order.
 //!
-//! The boxes are obvhs's, exact (the triangles' own minima and maxima and their unions), so
-//! nothing is rounded: no quantisation, tighter boxes than the CWBVH's.
+//! Both passes give the same nodes on any number of threads. The boxes are obvhs's, exact
+//! (the triangles' own minima and maxima and their unions), so nothing is rounded: no
+//! quantisation, tighter boxes than the CWBVH's.
 use crate::wide_bvh::Node8;
 use obvhs::bvh2::{Bvh2, node::Bvh2Node};
 use rayon::prelude::*;
