@@ -6,7 +6,7 @@
 //! block of its own (padded), and per-slot ids live in a parallel array, so the hot loop never
 //! looks anything up through an index list and a leaf is one four-lane test. [`crate::geometry`]
 //! puts these together into the scene's two levels.
-use crate::collapse::collapse;
+use crate::collapse::{Leaf, collapse};
 use crate::isa::{Baseline, NodeTest};
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
@@ -124,7 +124,7 @@ impl Accel {
             lo = Vec3A::ZERO;
             hi = Vec3A::ZERO;
         }
-        let (nodes, slots) = collapse(&binary_bvh(&tris, params));
+        let (nodes, slots) = collapse(&binary_bvh(&tris, params), Leaf::Block);
         // Block by block, side by side: each block's triangles and shading data depend on
         // its slots alone.
         let padding = TriInfo {
@@ -451,6 +451,16 @@ fn binary_bvh(tris: &[Triangle], params: BvhBuildParams) -> Bvh2 {
     };
     ReinsertionOptimizer::default().run(&mut bvh, params.reinsertion_batch_ratio, None);
     bvh
+}
+
+/// The instance level's eight-wide nodes over `boxes` (one instance a leaf; obvhs's PLOC build
+/// and reinsertion with the preset [`build_params`] picks), and per slot the box there.
+pub(crate) fn instance_level(boxes: &[Aabb]) -> (WideBvh, Vec<u32>) {
+    let params = build_params(boxes.len());
+    let mut bvh = ploc(boxes, (0..boxes.len() as u32).collect(), params);
+    ReinsertionOptimizer::default().run(&mut bvh, params.reinsertion_batch_ratio, None);
+    let (nodes, slots) = collapse(&bvh, Leaf::Single);
+    (WideBvh::from_nodes(nodes), slots)
 }
 
 fn ploc<T: Boundable>(prims: &[T], indices: Vec<u32>, params: BvhBuildParams) -> Bvh2 {

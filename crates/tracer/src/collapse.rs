@@ -1,5 +1,6 @@
-//! The eight-wide nodes of a mesh, collapsed from obvhs's binary BVH (its PLOC build and
-//! reinsertion), with every leaf one block of four triangles ([`crate::tri4::Tri4`]).
+//! Eight-wide nodes collapsed from obvhs's binary BVH (its PLOC build and reinsertion): a
+//! mesh's, with every leaf one block of four triangles ([`crate::tri4::Tri4`]), and the
+//! instance level's, with every leaf one instance.
 //!
 //! obvhs's own collapse (to its compressed CWBVH) runs an optimal cost search over every
 //! binary node with eight child counts each, serially, and caps a leaf at three triangles
@@ -33,8 +34,24 @@ const BLOCK_COST: f32 = 1.0;
 /// walk's instructions barely move between 0.1 and 10 (`bench --bvh-triangles`: ±1 %).
 const LEVEL_COST: f32 = 0.25;
 
-/// Triangles in a leaf: one block.
-const LEAF_MAX: u32 = 4;
+/// What a leaf holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Leaf {
+    /// Up to four triangles, one block (a mesh).
+    Block,
+    /// One primitive (an instance, whose test is a walk of its own).
+    Single,
+}
+
+impl Leaf {
+    /// Primitives a leaf holds at most, and the slots it takes.
+    fn max(self) -> u32 {
+        match self {
+            Leaf::Block => 4,
+            Leaf::Single => 1,
+        }
+    }
+}
 
 /// Binary levels below the root that the bottom-up pass splits between threads.
 const PARALLEL_LEVELS: u32 = 10;
@@ -47,11 +64,14 @@ const PARALLEL_TASKS: usize = 64;
 /// child's slot bits are its block's lanes, relative to the node's `prim_base`. The same
 /// nodes in the same order on any number of threads: the first nodes breadth first, then
 /// each subtree left at that point depth first, one after another.
-pub fn collapse(bvh: &Bvh2) -> (Vec<Node8>, Vec<u32>) {
+pub fn collapse(bvh: &Bvh2, leaf: Leaf) -> (Vec<Node8>, Vec<u32>) {
     if bvh.nodes.is_empty() || bvh.primitive_indices.is_empty() {
         return (Vec::new(), Vec::new());
     }
-    let subs = Subtrees((0..bvh.nodes.len()).map(|_| AtomicU64::new(0)).collect());
+    let subs = Subtrees {
+        packed: (0..bvh.nodes.len()).map(|_| AtomicU64::new(0)).collect(),
+        leaf,
+    };
     subtree(bvh, &subs, 0, 0);
     let mut out = Out::default();
     let mut todo = VecDeque::from([Pending {
@@ -139,11 +159,12 @@ impl Out {
                 let before = self.slots.len();
                 leaf_prims(bvh, k as usize, &mut self.slots);
                 let count = self.slots.len() - before;
-                n.child[c] = ((1 << count) - 1) << (4 * blocks);
+                let size = subs.leaf.max() as usize;
+                n.child[c] = ((1 << count) - 1) << (size * blocks);
                 n.leaves |= 1 << c;
                 blocks += 1;
                 self.slots
-                    .resize(self.slots.len().next_multiple_of(4), u32::MAX);
+                    .resize(self.slots.len().next_multiple_of(size), u32::MAX);
             }
         }
         self.nodes.push(n);
@@ -184,11 +205,11 @@ struct Subtree {
 }
 
 impl Subtree {
-    /// A binary leaf (PLOC's hold one triangle each).
-    fn of_leaf(node: &Bvh2Node) -> Subtree {
+    /// A binary leaf (PLOC's hold one primitive each).
+    fn of_leaf(node: &Bvh2Node, leaf: Leaf) -> Subtree {
         assert!(
-            node.prim_count <= LEAF_MAX,
-            "a binary leaf of {} triangles: PLOC makes leaves of one",
+            node.prim_count <= leaf.max(),
+            "a binary leaf of {} primitives: PLOC makes leaves of one",
             node.prim_count
         );
         Subtree {
@@ -200,11 +221,11 @@ impl Subtree {
 
     /// An inner binary node over subtrees `l` and `r`: a leaf where one block test over its
     /// box costs no more than its split.
-    fn of_inner(node: &Bvh2Node, l: Subtree, r: Subtree) -> Subtree {
+    fn of_inner(node: &Bvh2Node, l: Subtree, r: Subtree, max: u32) -> Subtree {
         let area = node.aabb.half_area().max(0.0);
         let count = l.count + r.count;
         let split = LEVEL_COST * area + l.cost + r.cost;
-        let leaf = count <= LEAF_MAX && BLOCK_COST * area <= split;
+        let leaf = count <= max && BLOCK_COST * area <= split;
         Subtree {
             count: count.min(255),
             cost: if leaf { BLOCK_COST * area } else { split },
@@ -228,15 +249,18 @@ impl Subtree {
 
 /// Per binary node, its [`Subtree`], written by the threads of the bottom-up pass (each node
 /// by the one whose subtree holds it).
-struct Subtrees(Vec<AtomicU64>);
+struct Subtrees {
+    packed: Vec<AtomicU64>,
+    leaf: Leaf,
+}
 
 impl Subtrees {
     fn get(&self, i: usize) -> Subtree {
-        Subtree::unpack(self.0[i].load(Relaxed))
+        Subtree::unpack(self.packed[i].load(Relaxed))
     }
 
     fn set(&self, i: usize, s: Subtree) {
-        self.0[i].store(s.pack(), Relaxed);
+        self.packed[i].store(s.pack(), Relaxed);
     }
 }
 
@@ -252,7 +276,7 @@ fn subtree(bvh: &Bvh2, subs: &Subtrees, i: usize, level: u32) -> Subtree {
         || subtree(bvh, subs, f, level + 1),
         || subtree(bvh, subs, f + 1, level + 1),
     );
-    let s = Subtree::of_inner(node, l, r);
+    let s = Subtree::of_inner(node, l, r, subs.leaf.max());
     subs.set(i, s);
     s
 }
@@ -263,7 +287,7 @@ fn subtree_serial(bvh: &Bvh2, subs: &Subtrees, root: usize) -> Subtree {
     while let Some((i, children_done)) = stack.pop() {
         let node = &bvh.nodes[i];
         if node.is_leaf() {
-            subs.set(i, Subtree::of_leaf(node));
+            subs.set(i, Subtree::of_leaf(node, subs.leaf));
             continue;
         }
         let first = node.first_index as usize;
@@ -273,7 +297,7 @@ fn subtree_serial(bvh: &Bvh2, subs: &Subtrees, root: usize) -> Subtree {
         }
         subs.set(
             i,
-            Subtree::of_inner(node, subs.get(first), subs.get(first + 1)),
+            Subtree::of_inner(node, subs.get(first), subs.get(first + 1), subs.leaf.max()),
         );
     }
     subs.get(root)
@@ -325,7 +349,7 @@ fn openable_area(bvh: &Bvh2, subs: &Subtrees, k: u32) -> f32 {
     }
 }
 
-/// The input primitives of binary subtree `b` (at most [`LEAF_MAX`]), in tree order.
+/// The input primitives of binary subtree `b` (at most a leaf's), in tree order.
 fn leaf_prims(bvh: &Bvh2, b: usize, out: &mut Vec<u32>) {
     let node = &bvh.nodes[b];
     let first = node.first_index as usize;
@@ -381,7 +405,7 @@ mod tests {
             (1000, 0.7),
         ] {
             let tris = strip(n, gap);
-            let (nodes, slots) = collapse(&bvh2(&tris));
+            let (nodes, slots) = collapse(&bvh2(&tris), Leaf::Block);
             assert_eq!(slots.len() % 4, 0);
             let mut seen = vec![0; n];
             for s in slots.iter().filter(|&&s| s != u32::MAX) {
@@ -418,9 +442,35 @@ mod tests {
     }
 
     #[test]
+    fn single_leaves_hold_one_primitive_each_with_no_padding() {
+        let tris = strip(300, 0.1);
+        let (nodes, slots) = collapse(&bvh2(&tris), Leaf::Single);
+        let mut sorted = slots.clone();
+        sorted.sort_unstable();
+        assert_eq!(
+            sorted,
+            (0..300).collect::<Vec<u32>>(),
+            "every primitive once, no padding"
+        );
+        let mut leaves = 0;
+        for node in &nodes {
+            for c in 0..8 {
+                if node.leaves >> c & 1 == 1 {
+                    assert_eq!(node.child[c].count_ones(), 1);
+                    let slot = (node.prim_base + node.child[c].trailing_zeros()) as usize;
+                    let t = &tris[slots[slot] as usize];
+                    assert!(node.planes[0][c] <= t.v0.x && node.planes[1][c] >= t.v1.x);
+                    leaves += 1;
+                }
+            }
+        }
+        assert_eq!(leaves, 300);
+    }
+
+    #[test]
     fn near_triangles_share_a_leaf_and_far_ones_are_split() {
         // Four triangles close together: one leaf of four, the root's only child.
-        let (nodes, _) = collapse(&bvh2(&strip(4, 0.2)));
+        let (nodes, _) = collapse(&bvh2(&strip(4, 0.2)), Leaf::Block);
         assert_eq!(nodes.len(), 1);
         assert_eq!(nodes[0].leaves, 1);
         assert_eq!(nodes[0].child[0], 0xf);
@@ -431,7 +481,7 @@ mod tests {
             v1: t.v1 + Vec3A::X * 100.0,
             v2: t.v2 + Vec3A::X * 100.0,
         }));
-        let (nodes, _) = collapse(&bvh2(&tris));
+        let (nodes, _) = collapse(&bvh2(&tris), Leaf::Block);
         assert_eq!(nodes.len(), 1);
         assert_eq!(nodes[0].leaves.count_ones(), 2);
     }

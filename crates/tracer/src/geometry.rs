@@ -7,7 +7,7 @@
 //!
 //! Hits name the instance, the mesh's triangle and the barycentrics; [`Geometry::interaction`]
 //! turns one into a [`SurfaceInteraction`].
-use crate::accel::{Accel, InputTri, build_params};
+use crate::accel::{Accel, InputTri, instance_level};
 use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
 
@@ -17,10 +17,8 @@ use crate::wide_walk::WalkStack;
 use eyeadapt_scene::{MaterialId, Scene};
 use glam::{Affine3A, Mat3A, Vec2, Vec3A};
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::ray::Ray;
 use rayon::prelude::*;
-use std::time::Duration;
 
 /// One instance as the tracer shades it.
 struct InstanceData {
@@ -435,15 +433,11 @@ fn two_levels(scene: &Scene) -> (Levels, Vec<Attributes>) {
             ids.push(i as u32);
         }
     }
-    let top = build_cwbvh(&boxes, build_params(boxes.len()), &mut Duration::default());
-    let top_instance = top
-        .primitive_indices
-        .iter()
-        .map(|&k| ids[k as usize])
-        .collect();
+    let (top, slots) = instance_level(&boxes);
+    let top_instance = slots.iter().map(|&k| ids[k as usize]).collect();
     (
         Levels::Two {
-            top: WideBvh::of(&top),
+            top,
             top_instance,
             meshes,
         },
