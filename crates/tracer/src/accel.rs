@@ -103,57 +103,51 @@ impl Accel {
 
     /// Builds with an explicit obvhs preset.
     pub fn build_with(input: &[InputTri], params: BvhBuildParams) -> Accel {
-        let mut kept = Vec::with_capacity(input.len());
-        let mut degenerate = 0;
-        for t in input {
-            if normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0]).is_some() {
-                kept.push(t);
-            } else {
-                degenerate += 1;
-            }
-        }
-        let tris: Vec<Triangle> = kept.iter().map(|t| t.triangle()).collect();
-        let (mut lo, mut hi) = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
-        for t in &tris {
-            for v in [t.v0, t.v1, t.v2] {
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-        }
-        if tris.is_empty() {
-            lo = Vec3A::ZERO;
-            hi = Vec3A::ZERO;
-        }
-        let (nodes, slots) = collapse(&binary_bvh(&tris, params), Leaf::Block);
-        // Block by block, side by side: each block's triangles and shading data depend on
-        // its slots alone.
-        let padding = TriInfo {
-            ng: Vec3A::ZERO,
-            instance: u32::MAX,
-            prim: u32::MAX,
+        // Every step side by side, each in input (or slot) order, so the result is the same on
+        // any number of threads: the triangles with an area, ...
+        let kept: Vec<&InputTri> = input
+            .par_iter()
+            .filter(|t| unit_normal(t).is_some())
+            .collect();
+        let degenerate = input.len() - kept.len();
+        let tris: Vec<Triangle> = kept.par_iter().map(|t| t.triangle()).collect();
+        let empty = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
+        let (lo, hi) = match tris.is_empty() {
+            true => (Vec3A::ZERO, Vec3A::ZERO),
+            false => tris
+                .par_iter()
+                .map(|t| (t.v0.min(t.v1).min(t.v2), t.v0.max(t.v1).max(t.v2)))
+                .reduce(|| empty, |a, b| (a.0.min(b.0), a.1.max(b.1))),
         };
-        let mut info = vec![padding; slots.len()];
-        let mut packs = vec![Tri4::default(); slots.len() / 4];
-        packs
-            .par_iter_mut()
-            .zip(info.par_chunks_mut(4))
-            .zip(slots.par_chunks(4))
-            .for_each(|((pack, info), slots)| {
-                for (lane, (&i, info)) in slots.iter().zip(info).enumerate() {
-                    if i == u32::MAX {
-                        continue;
+        let (nodes, slots) = collapse(&binary_bvh(&tris, params), Leaf::Block);
+        // ... and each block's triangles and each slot's shading data, from its slots alone.
+        let packs: Vec<Tri4> = slots
+            .par_chunks(4)
+            .map(|block| {
+                let mut pack = Tri4::default();
+                for (lane, &i) in block.iter().enumerate() {
+                    if i != u32::MAX {
+                        pack.set(lane, &tris[i as usize]);
                     }
-                    let (i, t) = (i as usize, kept[i as usize]);
-                    pack.set(lane, &tris[i]);
-                    *info = TriInfo {
-                        ng: normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0])
-                            .expect("kept triangles have an area")
-                            .0,
-                        instance: t.instance,
-                        prim: t.prim,
-                    };
                 }
-            });
+                pack
+            })
+            .collect();
+        let info: Vec<TriInfo> = slots
+            .par_iter()
+            .map(|&i| match kept.get(i as usize) {
+                Some(t) => TriInfo {
+                    ng: unit_normal(t).expect("kept triangles have an area"),
+                    instance: t.instance,
+                    prim: t.prim,
+                },
+                None => TriInfo {
+                    ng: Vec3A::ZERO,
+                    instance: u32::MAX,
+                    prim: u32::MAX,
+                },
+            })
+            .collect();
         let triangles = kept.len();
         let wide = WideBvh::from_nodes(nodes);
         Accel {
@@ -432,6 +426,11 @@ fn for_blocks(base: u32, mut mask: u32, mut test: impl FnMut(u32, u32) -> bool) 
         }
     }
     false
+}
+
+/// The unit geometric normal of `t` (following its winding), or `None` when it has no area.
+fn unit_normal(t: &InputTri) -> Option<Vec3A> {
+    normal_and_area(t.v[1] - t.v[0], t.v[2] - t.v[0]).map(|(n, _)| n)
 }
 
 /// obvhs's binary BVH of `tris` with `params`: its PLOC build (after its spatial pre-splits

@@ -99,6 +99,9 @@ pub fn collapse(bvh: &Bvh2, leaf: Leaf) -> (Vec<Node8>, Vec<u32>) {
             part
         })
         .collect();
+    // Room for all of it at once: growing step by step copied the nodes again and again.
+    out.nodes.reserve(parts.iter().map(|p| p.nodes.len()).sum());
+    out.slots.reserve(parts.iter().map(|p| p.slots.len()).sum());
     for (p, part) in todo.iter().zip(parts) {
         out.append(p, part);
     }
