@@ -75,7 +75,9 @@ pub struct InputTri {
 /// copy): `fast` 0.78-0.93 s, `medium` 0.82-1.04 s (over budget under load), `very_fast`
 /// 0.69-0.75 s, `fastest` 0.71-0.80 s. Closest-hit rays: `fast` within noise of `medium`, 3-8 %
 /// ahead of `very_fast`, 10-15 % ahead of `fastest`. At the Cornell box's 36 triangles every
-/// preset builds in under 40 µs and traces alike, so small scenes keep `medium`.
+/// preset builds in under 40 µs and traces alike, so small scenes keep `medium`. (Measured
+/// with obvhs's CWBVH; a preset now sets only the PLOC build and the reinsertion, since the
+/// tracer collapses the binary BVH itself and ignores the preset's leaf size and collapse cost.)
 pub fn build_params(n: usize) -> BvhBuildParams {
     if n <= 256 * 1024 {
         BvhBuildParams::medium_build()
