@@ -1,13 +1,15 @@
 //! The scene's geometry for ray queries, in two levels: an [`Accel`] per unique mesh in object
-//! space and a [`WideBvh`] over the instances' world-space boxes (both obvhs builds decoded to
-//! float eight-wide nodes), so memory grows with the unique meshes, not with the instances.
+//! space and a [`WideBvh`] over the instances' world-space boxes (both obvhs's binary builds
+//! collapsed to float eight-wide nodes, `collapse.rs`), so memory grows with the unique meshes,
+//! not with the instances.
 //! When no mesh is placed twice, every triangle is put into one world-space [`Accel`] instead
 //! (the flat layout): nothing is shared then, and one traversal without per-instance ray
 //! transforms is faster.
 //!
 //! Hits name the instance, the mesh's triangle and the barycentrics; [`Geometry::interaction`]
 //! turns one into a [`SurfaceInteraction`].
-use crate::accel::{Accel, InputTri, instance_level};
+use crate::accel::{Accel, InputTri, binary_bvh_of, build_params};
+use crate::collapse::{Leaf, collapse};
 use crate::emitter::AreaTri;
 use crate::interaction::{Attributes, SurfaceInteraction};
 
@@ -437,11 +439,13 @@ fn two_levels(scene: &Scene) -> (Levels, Vec<Attributes>) {
             ids.push(i as u32);
         }
     }
-    let (top, slots) = instance_level(&boxes);
+    // One instance a leaf: an instance's test is a walk of its own.
+    let top = binary_bvh_of(&boxes, build_params(boxes.len()));
+    let (nodes, slots) = collapse(&top, Leaf::Single);
     let top_instance = slots.iter().map(|&k| ids[k as usize]).collect();
     (
         Levels::Two {
-            top,
+            top: WideBvh::from_nodes(nodes),
             top_instance,
             meshes,
         },
