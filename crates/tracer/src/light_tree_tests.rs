@@ -1,4 +1,4 @@
-//! Tests of the four-wide walk: every light keeps a path, the walk is shallow, probabilities
+//! Tests of the eight-wide walk: every light keeps a path, the walk is shallow, probabilities
 //! sum to 1 where every light reaches, and the share of sample numbers `pick` sends to each
 //! light is the probability `prob` reports for it (bit for bit at the chosen light).
 use super::*;
@@ -34,11 +34,11 @@ fn every_light_keeps_a_path_and_the_walk_is_shallow() {
         let lights = points(count);
         let tree = LightTree::build(&lights).unwrap();
         let depth = tree.trails.iter().map(|t| t.1).max().unwrap() as u32;
-        // ⌈log₄ count⌉ steps, one more where a median split leaves a node of 2 under a
-        // node that has already opened four children; at least one step.
-        let log4 = (libm::logf(count as f32) / libm::logf(4.0)).ceil() as u32;
+        // ⌈log₈ count⌉ steps, one more where a median split leaves a node of 2 under a
+        // node that has already opened eight children; at least one step.
+        let log8 = (libm::logf(count as f32) / libm::logf(8.0) - 1e-6).ceil() as u32;
         assert!(
-            depth >= log4.max(1) && depth <= log4 + 1,
+            depth >= log8.max(1) && depth <= log8 + 1,
             "{count}: depth {depth}"
         );
         for node in &tree.nodes {
@@ -53,7 +53,7 @@ fn every_light_keeps_a_path_and_the_walk_is_shallow() {
         // Every light is a leaf exactly once, at the end of its own trail.
         let mut seen = vec![0; count];
         for node in &tree.nodes {
-            for j in 0..4 {
+            for j in 0..WIDTH {
                 if node.leaves >> j & 1 != 0 {
                     seen[(node.child[j] & !LEAF) as usize] += 1;
                 }
@@ -62,9 +62,11 @@ fn every_light_keeps_a_path_and_the_walk_is_shallow() {
         assert!(seen.iter().all(|&s| s == 1), "{count}: {seen:?}");
     }
     let walk = |count| LightTree::build(&points(count)).unwrap().trails;
-    // 27 lights (the many-lights benchmark): three steps; the binary walk took five.
-    assert_eq!(walk(27).iter().map(|t| t.1).max(), Some(3));
-    assert!(walk(64).iter().all(|t| t.1 == 3));
+    // 27 lights (the many-lights benchmark): two steps; four children a node took three, the
+    // binary walk five.
+    assert_eq!(walk(27).iter().map(|t| t.1).max(), Some(2));
+    assert!(walk(64).iter().all(|t| t.1 == 2));
+    assert!(walk(512).iter().all(|t| t.1 == 3));
 }
 
 #[test]

@@ -49,4 +49,5 @@
 ///    hits, but of two triangles hit at the same distance (a ray through their shared edge) the
 ///    other may now be reported (every scene with such edges, in a few pixels; the built-in
 ///    interior's mean +0.010 %).
-pub const RENDER_REVISION: u32 = 15;
+/// 16: the light tree is eight children wide (scenes with more than 16 lights).
+pub const RENDER_REVISION: u32 = 16;
