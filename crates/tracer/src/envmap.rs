@@ -289,9 +289,11 @@ impl LatLong {
         let (sin_p, cos_p) = sincos_turns(mu);
         let local = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
         let wi = (self.to_world * local).normalize();
-        // Radiance and density as a ray escaping along `wi` will see them (rounding in the
-        // round trip can move a direction across a cell's edge; MIS needs the same numbers).
-        let (li, pdf) = self.radiance_and_pdf(wi);
+        // Radiance and density at the drawn point itself: the density the draw has. A ray
+        // escaping along `wi` finds (u, v) again through `uv`'s two arc tangents, within
+        // rounding of these (only a point within rounding of a cell's edge can land in the
+        // other cell); skipping that round trip saves its two f64 arc tangents a sample.
+        let (li, pdf) = self.radiance_and_pdf_uv(mu, v, sin_t);
         (pdf > 0.0).then_some(EnvSample { wi, li, pdf })
     }
 }
@@ -434,8 +436,11 @@ mod tests {
     }
 
     /// A drawn direction is unit, and carries the radiance and density that a ray escaping
-    /// along it sees, bit for bit (MIS weighs the two strategies with them), on a rotated map
-    /// with a bright texel and a black one.
+    /// along it sees (MIS weighs the two strategies with them) to within rounding: the sample
+    /// looks them up at the drawn map point, the ray at the point its direction maps back to.
+    /// On a rotated map with a bright texel and a black one; of 50 000 draws, none may land
+    /// across a cell's edge (where the density jumps). The gap between the two weighs the
+    /// strategies' MIS weights off a sum of 1 by as much, 10⁻⁴ at most: far below any noise.
     #[test]
     fn samples_carry_what_an_escaping_ray_sees() {
         let (w, h) = (16u32, 8u32);
@@ -449,7 +454,7 @@ mod tests {
         let turn = glam::Mat3::from_rotation_z(0.4) * glam::Mat3::from_rotation_y(-1.1);
         let env = Environment::new(None, Some(&test_map(w, h, texels, 3.0, turn))).unwrap();
         let key = crate::sampler::hash_key(&[5]);
-        let mut drawn = 0;
+        let (mut drawn, mut worst) = (0, (0.0f32, 0.0f32));
         for s in 0..50_000 {
             let Some(es) = env.sample(crate::sampler::SampleStream::new(key, s).next_2d()) else {
                 continue;
@@ -457,10 +462,16 @@ mod tests {
             drawn += 1;
             assert!((es.wi.length() - 1.0).abs() < 1e-6, "{}", es.wi);
             let (li, pdf) = env.radiance_and_pdf(es.wi);
-            assert_eq!(es.li, li, "{}", es.wi);
-            assert_eq!(es.pdf.to_bits(), pdf.to_bits(), "{}", es.wi);
+            let rel = |a: f32, b: f32| (a - b).abs() / b.abs().max(1e-6);
+            worst.0 = worst.0.max(rel(es.pdf, pdf));
+            for c in 0..3 {
+                worst.1 = worst.1.max(rel(es.li[c], li[c]));
+            }
             assert!(es.pdf > 0.0);
         }
         assert!(drawn > 49_990, "{drawn}");
+        // 5.3e-5 and 5.5e-5 at the time of writing: the round trip's rounding, magnified
+        // beside the bright texel; a draw across a cell's edge would differ by far more.
+        assert!(worst.0 < 1e-4 && worst.1 < 1e-4, "{worst:?}");
     }
 }

@@ -50,4 +50,7 @@
 ///    other may now be reported (every scene with such edges, in a few pixels; the built-in
 ///    interior's mean +0.010 %).
 /// 16: the light tree is eight children wide (scenes with more than 16 lights).
-pub const RENDER_REVISION: u32 = 16;
+/// 17: an environment map's sample carries the radiance and density of the drawn map point
+///    instead of those of the point its direction maps back to (within 10⁻⁴; scenes with a
+///    map).
+pub const RENDER_REVISION: u32 = 17;
