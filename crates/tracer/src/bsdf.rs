@@ -116,7 +116,10 @@ pub fn cosine_hemisphere(u: [f32; 2]) -> Vec3A {
         let (s, c) = sincos_quarter_pi(a / b);
         (b * s, b * c)
     };
-    Vec3A::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
+    // The disk point's radius is the larger of |a| and |b|: z from it needs no wait for the
+    // division and the sine and cosine (the next ray's direction waits on this chain).
+    let r = a.abs().max(b.abs());
+    Vec3A::new(x, y, (1.0 - r * r).max(0.0).sqrt())
 }
 
 fn reflect(wo: Vec3A, m: Vec3A) -> Vec3A {

@@ -53,4 +53,6 @@
 /// 17: an environment map's sample carries the radiance and density of the drawn map point
 ///    instead of those of the point its direction maps back to (within 10⁻⁴; scenes with a
 ///    map).
-pub const RENDER_REVISION: u32 = 17;
+/// 18: a cosine-weighted direction's height comes from the disk point's radius instead of
+///    its two coordinates (every scene with diffuse surfaces, in the last bits).
+pub const RENDER_REVISION: u32 = 18;
