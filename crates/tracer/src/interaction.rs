@@ -1,5 +1,6 @@
 //! The surface at a ray hit ([`SurfaceInteraction`]) and the per-vertex attributes of a mesh it
 //! is interpolated from.
+use crate::triangle::normal_and_area;
 use eyeadapt_scene::{Mesh, Transform};
 use glam::{Vec2, Vec3A};
 
@@ -42,7 +43,26 @@ pub struct Attributes {
 impl Attributes {
     /// The mesh's attributes, with normals carried through `to_world` when given.
     pub fn of(mesh: &Mesh, to_world: Option<&Transform>) -> Attributes {
-        let any = !(mesh.normals.is_empty() && mesh.uvs.is_empty() && mesh.colors.is_empty());
+        // A normal that is not finite or is far from unit length disqualifies its triangles'
+        // interpolation (they shade with `ng`): stored as NaN, it turns the interpolated sum
+        // into NaN, which `normalize_or_zero` maps to zero, the same fallback as checking the
+        // three normals on every hit.
+        let mut normals: Vec<Vec3A> = mesh
+            .normals
+            .iter()
+            .map(|&n| Vec3A::from(to_world.map_or(n, |m| m.normal(n))))
+            .map(|n| {
+                if n.is_finite() && n.length_squared() > 0.5 {
+                    n
+                } else {
+                    Vec3A::NAN
+                }
+            })
+            .collect();
+        if !normals.is_empty() && face_normals_only(mesh, to_world, &normals) {
+            normals = Vec::new();
+        }
+        let any = !(normals.is_empty() && mesh.uvs.is_empty() && mesh.colors.is_empty());
         // Face colours need no indices, only one colour per triangle.
         Attributes {
             indices: if any {
@@ -50,22 +70,7 @@ impl Attributes {
             } else {
                 Vec::new()
             },
-            // A normal that is not finite or is far from unit length disqualifies its
-            // triangles' interpolation (they shade with `ng`): stored as NaN, it turns the
-            // interpolated sum into NaN, which `normalize_or_zero` maps to zero, the same
-            // fallback as checking the three normals on every hit.
-            normals: mesh
-                .normals
-                .iter()
-                .map(|&n| Vec3A::from(to_world.map_or(n, |m| m.normal(n))))
-                .map(|n| {
-                    if n.is_finite() && n.length_squared() > 0.5 {
-                        n
-                    } else {
-                        Vec3A::NAN
-                    }
-                })
-                .collect(),
+            normals,
             uvs: mesh.uvs.clone(),
             colors: mesh.colors.iter().map(|&c| Vec3A::from(c)).collect(),
             face_colors: if mesh.face_colors.len() == mesh.indices.len() {
@@ -143,6 +148,35 @@ impl Attributes {
     }
 }
 
+/// The least cosine between a vertex normal and its triangle's geometric normal (in the same
+/// space, on the same side) at which the two count as one: 0.08°, far below any smoothing a
+/// modeller means (degrees) and far above what a file's rounding of a face's own normal leaves.
+const FACE_NORMAL_COS: f32 = 1.0 - 1e-6;
+
+/// True when every vertex normal of every triangle with an area is its triangle's geometric
+/// normal (within [`FACE_NORMAL_COS`]), as in flat-shaded meshes exported with their face
+/// normals: interpolating them would give `ng` back, at the cost of a barycentric solve, three
+/// normal loads and a normalisation on the chain from a hit to the next ray. Such a mesh keeps
+/// no normals and shades with `ng` (the same normal to 10⁻⁶).
+fn face_normals_only(mesh: &Mesh, to_world: Option<&Transform>, normals: &[Vec3A]) -> bool {
+    use rayon::prelude::*;
+    let point = |k: u32| {
+        let p = mesh.positions[k as usize];
+        Vec3A::from(to_world.map_or(p, |m| m.point(p)))
+    };
+    mesh.indices.par_iter().all(|t| {
+        let v = t.map(point);
+        let Some((ng, _)) = normal_and_area(v[1] - v[0], v[2] - v[0]) else {
+            return true; // no area: never hit
+        };
+        t.iter().all(|&k| {
+            let n = normals[k as usize];
+            // NaN (an unusable normal) fails, and keeps the normals.
+            n.dot(ng) >= FACE_NORMAL_COS * n.length()
+        })
+    })
+}
+
 /// ∂p/∂u and ∂p/∂v of the triangle `v` with texture coordinates `uv`; a degenerate
 /// parameterisation falls back to the edges v1 − v0 and v2 − v0.
 fn dp_duv(v: [Vec3A; 3], uv: [Vec2; 3]) -> [Vec3A; 2] {
@@ -205,6 +239,45 @@ mod tests {
         let tilted_n = Vec3A::from(tilted).normalize();
         let ns = attr.interpolate(3, Vec2::new(1.0, 0.0), v, ng).ns;
         assert!((ns - tilted_n).length() < 1e-6, "{ns} vs {tilted_n}");
+    }
+
+    /// A quad whose vertex normals are its face's keeps none (it shades with `ng`); one
+    /// vertex normal turned by 1°, or all of them on the other side, keeps them; so does a
+    /// mesh with an unusable normal. A triangle without area does not count.
+    #[test]
+    fn face_normals_are_dropped_and_smoothing_is_kept() {
+        use glam::Vec3;
+        let quad = |normals: Vec<Vec3>| Mesh {
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::ONE.with_z(0.0),
+                Vec3::Y,
+                Vec3::X * 2.0,
+            ],
+            // The last triangle has no area.
+            indices: vec![[0, 1, 2], [0, 2, 3], [0, 1, 4]],
+            normals,
+            ..Default::default()
+        };
+        let up = Vec3::Z;
+        let turned = Vec3::new(
+            libm::sinf(1f32.to_radians()),
+            0.0,
+            libm::cosf(1f32.to_radians()),
+        );
+        // Not unit: normals are normalised only when interpolated.
+        let long = up * 1.5;
+        assert!(!Attributes::of(&quad(vec![up, up, up, long, -up]), None).has_normals());
+        assert!(Attributes::of(&quad(vec![up, up, turned, up, up]), None).has_normals());
+        assert!(Attributes::of(&quad(vec![-up; 5]), None).has_normals());
+        let nan = Vec3::new(f32::NAN, 0.0, 1.0);
+        assert!(Attributes::of(&quad(vec![up, up, up, nan, up]), None).has_normals());
+        // In world space: a rotation keeps the match, so the normals go.
+        let turn = Transform {
+            matrix: glam::Mat4::from_rotation_x(0.7),
+        };
+        assert!(!Attributes::of(&quad(vec![up; 5]), Some(&turn)).has_normals());
     }
 
     #[test]
