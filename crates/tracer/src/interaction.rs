@@ -157,7 +157,7 @@ const FACE_NORMAL_COS: f32 = 1.0 - 1e-6;
 /// normal (within [`FACE_NORMAL_COS`]), as in flat-shaded meshes exported with their face
 /// normals: interpolating them would give `ng` back, at the cost of a barycentric solve, three
 /// normal loads and a normalisation on the chain from a hit to the next ray. Such a mesh keeps
-/// no normals and shades with `ng` (the same normal to 10⁻⁶).
+/// no normals and shades with `ng` (within 0.08° of what interpolating would give).
 fn face_normals_only(mesh: &Mesh, to_world: Option<&Transform>, normals: &[Vec3A]) -> bool {
     use rayon::prelude::*;
     let point = |k: u32| {
