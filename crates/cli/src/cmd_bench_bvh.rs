@@ -305,8 +305,8 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let mem = accel.memory_bytes() as f64;
     println!(
         "BVH of {tris} triangles ({threads} threads, obvhs {preset}_build by {policy}): build \
-         median {build:.6} s of {} (fastest {build_min:.6} s) = {:.2} M triangles/s; obvhs's CWBVH build \
-         {obvhs:.6} s",
+         median {build:.6} s of {} (fastest {build_min:.6} s) = {:.2} M triangles/s; obvhs's \
+         CWBVH build {obvhs:.6} s",
         times.len(),
         tris as f64 / build / 1e6
     );

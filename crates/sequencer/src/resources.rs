@@ -10,8 +10,10 @@
 //!   pixel from 1024² to 2048² (230 MB → 898 MB, also with every estimator, and the same for
 //!   a one-frame `sequence`).
 //! - [`BYTES_PER_TRIANGLE`] per triangle: the scene's mesh, the BVH input, the obvhs build
-//!   (its binary BVH, collapsed to eight-wide nodes), the BVH-ordered triangles and the per-slot shading data. Measured:
-//!   454 B per triangle from 0.33 M to 2.6 M triangles (147 MB → 1.14 GB).
+//!   (its binary BVH, collapsed to eight-wide nodes), the BVH-ordered triangles and the
+//!   per-slot shading data. Measured: 454 B per triangle from 0.33 M to 2.6 M triangles
+//!   (147 MB → 1.14 GB), with obvhs's CWBVH; the tracer's own collapse since peaks lower
+//!   (a 1M-triangle render 437.5 → 421.0 MB), so the figure stays an upper bound.
 //!
 //! The limit is the least of: physical memory (`MemTotal` from `/proc/meminfo`); the memory
 //! limit of this process's cgroup and of every cgroup above it (v2 `memory.max`, v1

@@ -22,9 +22,9 @@ use obvhs::ray::Ray;
 
 /// What a walk does with an entered node's hit leaves: `visit(base, mask, ray)` gets slot
 /// `base + i` for each set bit i of `mask`, may shorten `ray.tmax` (the node tests after it
-/// see the shorter ray), and returns true to stop the walk. Any such closure is one; [`crate::accel`]'s leaf tests are types of their own whose `visit` is
-/// inlined into the walk (a closure's body may stay a call, with the walk's state spilled
-/// around it).
+/// see the shorter ray), and returns true to stop the walk. Any such closure is one;
+/// [`crate::accel`]'s leaf tests are types of their own whose `visit` is inlined into the walk
+/// (a closure's body may stay a call, with the walk's state spilled around it).
 pub trait Leaves {
     fn visit(&mut self, base: u32, mask: u32, ray: &mut Ray) -> bool;
 }
