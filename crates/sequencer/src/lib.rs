@@ -13,6 +13,8 @@ pub mod camera_motion;
 mod error;
 /// [`Estimator`]: the estimators by name.
 pub mod estimator;
+/// An EXR written with its blocks compressed on the current rayon pool.
+mod exr_blocks;
 /// [`FrameSet`]: frame specs, narrowing, chunks for farms.
 pub mod frames;
 /// Job files: what a sequence renders, and how.

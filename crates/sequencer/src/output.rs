@@ -1,8 +1,9 @@
 //! Files a render writes: the raw frame as OpenEXR (beauty + AOVs), sRGB PNG previews, and
 //! the atomic write-then-rename every output goes through.
 //!
-//! EXR layout: one part, PIZ compression, increasing line order (so the bytes do not depend
-//! on compression-thread timing), f32 channels `R G B`, `albedo.{R,G,B}`,
+//! EXR layout: one part, PIZ compression in 256 × 256 tiles (compressed in parallel,
+//! `exr_blocks.rs`), increasing line order (so the bytes do not depend on compression-thread
+//! timing), f32 channels `R G B`, `albedo.{R,G,B}`,
 //! `wcam_achromatic.{R,G,B}`, `irradiance.{R,G,B}`, `N.{X,Y,Z}` (first-hit shading normal),
 //! `Z` (first-hit distance, 0 where nothing was hit), `mask.emitter` and `mask.hit`
 //! (fractions of the pixel's samples that saw an emitter / any surface).
@@ -218,11 +219,10 @@ pub fn write_exr(path: &Path, frame: &Frame) -> Result<(), Failure> {
         },
         AnyChannels::sort(list),
     );
+    let image = Image::from_layer(layer);
     atomic_write(path, |tmp| {
-        Image::from_layer(layer)
-            .write()
-            .non_parallel()
-            .to_file(tmp)
+        let file = fs::File::create(tmp).map_err(|e| Failure::io("cannot create", tmp, &e))?;
+        crate::exr_blocks::write_parallel(&image, std::io::BufWriter::new(file))
             .map_err(|e| exr_failure(tmp, e))
     })
 }
