@@ -35,6 +35,8 @@ pub mod resources;
 pub mod sequence;
 /// The run settings the manifest records.
 pub mod settings;
+/// The previews' 8-bit sRGB bytes, by table.
+mod srgb8;
 /// `eyeadapt render`: one still.
 pub mod still;
 /// [`stop::StopRequest`]: a signal asks a running sequence to stop after the frame in flight.

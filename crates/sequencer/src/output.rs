@@ -275,30 +275,18 @@ pub fn read_exr(path: &Path) -> Result<Frame, Failure> {
     })
 }
 
-/// IEC 61966-2-1 encoding of one linear value in [0, 1].
-pub fn srgb_encode(c: f32) -> f32 {
-    if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * libm::powf(c, 1.0 / 2.4) - 0.055
-    }
-}
+pub use crate::srgb8::srgb_encode;
 
 /// 8-bit sRGB bytes of a linear image with the documented preview curve.
 pub fn preview_bytes(rgb: &[[f32; 3]], exposure_ev: f32) -> Vec<u8> {
     let k = libm::powf(2f32, exposure_ev);
-    rgb.iter()
-        .flat_map(|p| {
-            p.map(|c| {
-                let v = if c.is_finite() {
-                    (c * k).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (srgb_encode(v) * 255.0 + 0.5) as u8
-            })
-        })
-        .collect()
+    crate::srgb8::srgb8_all(rgb.iter().flatten().map(|&c| {
+        if c.is_finite() {
+            (c * k).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }))
 }
 
 /// Writes an sRGB PNG preview of a linear image (atomically).
