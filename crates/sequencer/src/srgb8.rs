@@ -5,10 +5,10 @@
 //! The byte is a step function of v that rises by one at each of 255 thresholds, found once
 //! by bisection over the floats with the formula itself, so the table agrees with it exactly
 //! wherever the formula is monotonic (the tests compare both near every threshold and across
-//! [0, 1]). Between two thresholds v moves by at least 1 / (255 · 12.92) = 3.0e-4 (the curve
-//! is steepest at the foot of its power segment, where its slope meets the linear segment's
-//! 12.92), more than a 1/4096 bucket, so a bucket holds at most one threshold: the byte is the
-//! bucket's first byte, plus one past the threshold.
+//! [0, 1]). Between two thresholds v moves by at least 1 / (255 · 12.92) = 3.0e-4 (the
+//! curve's slope is at most its linear segment's 12.92; the power segment's is 12.7 at its
+//! foot and falls), more than a 1/4096 bucket, so a bucket holds at most one threshold: the
+//! byte is the bucket's first byte, plus one past the threshold.
 use std::sync::OnceLock;
 
 /// Buckets of [0, 1].
