@@ -1,4 +1,8 @@
 //! What the user typed (stage one of argument handling); commands validate further.
+//!
+//! The doc comments here are clap's `--help` text, printed as written: `<name>` in them is a
+//! placeholder for the user, not HTML.
+#![allow(rustdoc::invalid_html_tags)]
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 

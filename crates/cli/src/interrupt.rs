@@ -1,7 +1,7 @@
 //! Ctrl-C and SIGTERM during `eyeadapt sequence`.
 //!
 //! The first signal asks the run to stop after the frame in flight is committed (the sequence
-//! checks a [`StopRequest`] before each frame). A second one, or the first while the report
+//! checks an `eyeadapt_sequencer::stop::StopRequest` before each frame). A second one, or the first while the report
 //! is written, stops at once: that is safe at any moment because every file is written under
 //! a temporary name and renamed, and the next run cleans up and resumes. Either way the last
 //! line says how many frames are committed and that rerunning the same command resumes.

@@ -11,7 +11,7 @@
 //! [`cct_mccamy`] and [`hsv_of_linear`] are the read-outs used in logs and metrics.
 //!
 //! The temporal side: coherence metrics of a per-frame adaptation-colour series
-//! ([`series_metrics`]) and of the adapted image sequence ([`image_metrics`]), and a causal
+//! ([`series_metrics`](fn@series_metrics)) and of the adapted image sequence ([`image_metrics`](fn@image_metrics)), and a causal
 //! filter modelling how fast the eye re-adapts ([`TemporalFilter`], run by [`AdaptationFilter`]).
 
 mod cat;

@@ -7,7 +7,7 @@
 //!
 //! | preset | a | τ_f | τ_s | origin |
 //! |---|---|---|---|---|
-//! | `none` | – | – | – | the per-frame estimate is used as is (what [GRC13] does) |
+//! | `none` | – | – | – | the per-frame estimate is used as is (what \[GRC13\] does) |
 //! | `fairchild` | 0.45 | 1.0 s | 41 s | fit to Fairchild & Reniff: 50 % at ≈4 s, 90 % at 70 s |
 //! | `rinner` | 0.55 | 0.08 s | 28.9 s | Rinner & Gegenfurtner 2000 (slow half-life 20 s) |
 //! | `artistic` | 0.5 | 0.25 s | 3 s | short walkthroughs |

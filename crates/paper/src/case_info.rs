@@ -31,7 +31,7 @@ pub struct CaseInfo {
 /// (name, job text, scene template).
 pub type Job = (&'static str, &'static str, Option<&'static str>);
 
-/// The six cases of [GRC13] §5.
+/// The six cases of \[GRC13\] §5.
 pub const CASES: &[CaseInfo] = &[
     CaseInfo {
         number: 1,

@@ -8,7 +8,7 @@
 //! numbers, machine-readable metrics and the checks of every claim. Every case is also run
 //! over a sensitivity study (what the paper's text leaves open, several seeds per
 //! configuration): its verdicts — holds, does not hold, within noise — carry margins and
-//! standard errors, and each claim a robustness fraction. [`run`] does all six cases, writes
+//! standard errors, and each claim a robustness fraction. [`run`](fn@run) does all six cases, writes
 //! a contact sheet and a sensitivity plot per case and `RESULTS.md`.
 //!
 //! Output depends only on the seed and the variant (`--quick` or not): no timestamps or

@@ -1,6 +1,6 @@
 //! Contact sheets: one row per view, three tiles per row — raw, adapted with `wcam`, adapted
 //! with `eye` — like the paper's figures. Tiles are box-downscaled in linear light to at most
-//! [`TILE_MAX_WIDTH`] pixels, exposed so that the raw frame's 99th-percentile luminance
+//! [`TILE_MAX_WIDTH`](crate::sheet::TILE_MAX_WIDTH) pixels, exposed so that the raw frame's 99th-percentile luminance
 //! (emitters excluded) maps to 0.9, the same exposure for the three tiles of a row, and encoded
 //! with the preview curve (`output::preview_bytes`). Rows and tiles are separated by 4 px of
 //! black.

@@ -17,8 +17,8 @@ pub const WCAM_SPECULAR: &str = "wcam_specular";
 #[derive(Clone, Debug)]
 pub struct Level {
     pub label: String,
-    /// (placeholder, value) pairs for the scene and job templates, or [`WCAM_WEIGHT`] and
-    /// [`WCAM_SPECULAR`].
+    /// (placeholder, value) pairs for the scene and job templates, or `WCAM_WEIGHT` and
+    /// `WCAM_SPECULAR`.
     pub fill: Vec<(&'static str, String)>,
 }
 

@@ -38,7 +38,7 @@ pub mod col {
     pub const CAM_X: usize = 20;
 }
 
-/// What [`read`] found.
+/// What [`parse`] found.
 #[derive(Debug, Default)]
 pub struct Table {
     /// Rows of the sequence's own estimators, in file order.

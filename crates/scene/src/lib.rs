@@ -16,6 +16,9 @@
 //! Units: lengths are arbitrary scene units; colours are linear sRGB (Rec. 709 primaries, D65
 //! white); `emission` and environment values are radiance, light `intensity` is radiant
 //! intensity (radiance × area / distance² behaves as in Mitsuba 3's `rgb` emitters).
+// Public items' docs point at the private code that does their work: the crate's docs are
+// read with `cargo doc --document-private-items`, where those links resolve.
+#![allow(rustdoc::private_intra_doc_links)]
 
 mod any;
 mod builtin;

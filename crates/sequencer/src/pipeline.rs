@@ -1,5 +1,5 @@
 //! The one per-frame pipeline of `render`, `sequence` and `paper`: render → estimate → adapt →
-//! write. The commands differ only in where the files go ([`Layout`]) and in what they do
+//! write. The commands differ only in where the files go ([`Layout`](crate::pipeline::Layout)) and in what they do
 //! around a frame (resume and the manifest for `sequence`, measurements for `paper`), so the
 //! same frame gives the same pixels and the same CSV rows whichever command rendered it.
 use crate::adapt::{

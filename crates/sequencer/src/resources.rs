@@ -4,12 +4,12 @@
 //!
 //! The estimate is the peak of one frame in flight:
 //!
-//! - [`BYTES_PER_PIXEL`] per pixel: the film's f64 accumulators (144 B) live together with the
+//! - [`BYTES_PER_PIXEL`](crate::resources::BYTES_PER_PIXEL) per pixel: the film's f64 accumulators (144 B) live together with the
 //!   frame's f32 beauty and AOVs (72 B); writing the EXR copies the 18 channels again, and an
 //!   adapted EXR clones the frame. Measured: peak RSS of `eyeadapt render` grows by 217 B per
 //!   pixel from 1024² to 2048² (230 MB → 898 MB, also with every estimator, and the same for
 //!   a one-frame `sequence`).
-//! - [`BYTES_PER_TRIANGLE`] per triangle: the scene's mesh, the BVH input, the obvhs build
+//! - [`BYTES_PER_TRIANGLE`](crate::resources::BYTES_PER_TRIANGLE) per triangle: the scene's mesh, the BVH input, the obvhs build
 //!   (its binary BVH, collapsed to eight-wide nodes), the BVH-ordered triangles and the
 //!   per-slot shading data. Measured: 454 B per triangle from 0.33 M to 2.6 M triangles
 //!   (147 MB → 1.14 GB), with obvhs's CWBVH; the tracer's own collapse since peaks lower

@@ -17,7 +17,7 @@ const BUCKETS: usize = 4096;
 struct Table {
     /// The byte at the start of each bucket, k / BUCKETS (one more for v = 1).
     first: [u8; BUCKETS + 1],
-    /// thresholds[b]: the least v whose byte exceeds b; +∞ for b = 255.
+    /// `thresholds[b]`: the least v whose byte exceeds b; +∞ for b = 255.
     thresholds: [f32; 256],
 }
 

@@ -1,8 +1,8 @@
-//! [`StopRequest`]: how a signal handler asks a running sequence to stop.
+//! [`StopRequest`](crate::stop::StopRequest): how a signal handler asks a running sequence to stop.
 //!
-//! The handler (the CLI's, on SIGINT/SIGTERM) calls [`StopRequest::request`]; the sequence
+//! The handler (the CLI's, on SIGINT/SIGTERM) calls [`StopRequest::request`](crate::stop::StopRequest::request); the sequence
 //! checks it before each frame, so it stops right after the frame in flight is committed.
-//! The run keeps [`StopRequest::committed`] up to date, so that a handler which must stop at
+//! The run keeps [`StopRequest::committed`](crate::stop::StopRequest::committed) up to date, so that a handler which must stop at
 //! once (a second signal) can still say how many frames are safe on disk. Stopping at once is
 //! safe at any moment: every file is written under a temporary name and renamed, and the next
 //! run cleans up and resumes.

@@ -28,7 +28,7 @@ pub fn bilerp(p: [f32; 2], w: &Corners) -> f32 {
     (1.0 - y) * ((1.0 - x) * w[0] + x * w[1]) + y * ((1.0 - x) * w[2] + x * w[3])
 }
 
-/// A point of the unit square with density [`pdf`] from the uniform pair `u`.
+/// A point of the unit square with density `pdf` (the tests' reference) from the uniform pair `u`.
 #[inline]
 pub fn sample(u: [f32; 2], w: &Corners) -> [f32; 2] {
     let y = sample_linear(u[1], w[0] + w[1], w[2] + w[3]);

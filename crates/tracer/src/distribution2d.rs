@@ -50,7 +50,7 @@ fn guide<T: Copy + Into<f64>>(cdf: &[T], total: f64, g: usize, out: &mut Vec<u32
     }
 }
 
-/// [`invert`] for target `u · total` (u in [0, 1)), starting from the guide table.
+/// `invert` (the tests' reference) for target `u · total` (u in [0, 1)), starting from the guide table.
 #[inline]
 fn invert_guided<T: Copy + Into<f64>>(
     cdf: &[T],
@@ -75,7 +75,7 @@ fn invert<T: Copy + Into<f64>>(cdf: &[T], target: f64) -> (usize, f64) {
     finish_inversion(cdf, target, cdf.partition_point(|&c| c.into() <= target))
 }
 
-/// The entry and fraction of [`invert`] from the partition point `p` of `target` in `cdf`.
+/// The entry and fraction of `invert` from the partition point `p` of `target` in `cdf`.
 #[inline]
 fn finish_inversion<T: Copy + Into<f64>>(cdf: &[T], target: f64, p: usize) -> (usize, f64) {
     let k = p.min(cdf.len() - 1);
@@ -159,7 +159,7 @@ impl Distribution2D {
 
     /// A cell drawn in proportion to its weight with `u` (never one of weight 0), and a point
     /// uniform over it as fractions in [0, 1) along u and v: for a caller that redraws the
-    /// point inside the cell (the environment map), what [`Distribution2D::sample`] gives
+    /// point inside the cell (the environment map), what `Distribution2D::sample` (the tests') gives
     /// without the divisions back to the unit square and the density lookup it does not need.
     #[inline]
     pub fn sample_cell(&self, u: [f32; 2]) -> ([usize; 2], [f32; 2]) {

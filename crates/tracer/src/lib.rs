@@ -10,6 +10,9 @@
 //! Build a [`SceneData`] once from an `eyeadapt_scene::Scene`, then render any number of
 //! [`View`]s from it. Results depend only on the scene, the view and the settings, never on
 //! the number of threads.
+// Public items' docs point at the private code that does their work: the crate's docs are
+// read with `cargo doc --document-private-items`, where those links resolve.
+#![allow(rustdoc::private_intra_doc_links)]
 
 mod accel;
 mod accel_wide;

@@ -16,9 +16,9 @@
 
 use std::f64::consts::FRAC_PI_4;
 
-/// `c[k] = (−1)^k (π/4)^(2k+1) / (2k+1)!`: sin(π/4·t) = Σ c[k] t^(2k+1).
+/// `c[k] = (−1)^k (π/4)^(2k+1) / (2k+1)!`: sin(π/4·t) = Σ `c[k]` t^(2k+1).
 const SIN: [f64; 5] = series(1);
-/// `c[k] = (−1)^k (π/4)^(2k) / (2k)!`: cos(π/4·t) = Σ c[k] t^(2k).
+/// `c[k] = (−1)^k (π/4)^(2k) / (2k)!`: cos(π/4·t) = Σ `c[k]` t^(2k).
 const COS: [f64; 6] = series(0);
 
 /// The alternating series' coefficients, odd (`first` = 1) or even (0) powers.

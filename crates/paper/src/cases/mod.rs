@@ -3,7 +3,7 @@
 //! Every table lists every estimator the job ran (estimators.md §0.1) plus, where a colour is
 //! read off an image, `raw` (no adaptation). Adapted colours are `CAT02(white → D65, D = 1)`
 //! applied to raw region means (the CAT is linear). HSV read-outs use
-//! [`equal_luminance_hsv`](super::measure::equal_luminance_hsv).
+//! [`equal_luminance_hsv`](crate::measure::equal_luminance_hsv).
 mod case1;
 mod case2;
 mod case3;

@@ -1,6 +1,6 @@
 //! Case 4's spot from the scene's geometry: where its light lands first, and which statue
 //! pixels it reaches ("the spotlight only lights the only white object", "the white statue is
-//! partially lit", [GRC13] §4.1, §5.2).
+//! partially lit", \[GRC13\] §4.1, §5.2).
 use eyeadapt_scene::{Light, Scene};
 use eyeadapt_tracer::{Frame, RayScratch, SceneData, View};
 use glam::{Vec3, Vec3A};

@@ -19,7 +19,7 @@ pub const MAX_DEPTH: u32 = 20;
 struct Node {
     /// Index of the node that refines quadrant q, 0 where the quadrant is a leaf.
     child: [u32; 4],
-    /// Each quadrant's density relative to the node's, 4 · sum[q] / Σ sum (set by
+    /// Each quadrant's density relative to the node's, 4 · `sum[q]` / Σ sum (set by
     /// [`DTree::sum_up`]).
     density: [f32; 4],
 }
