@@ -216,8 +216,34 @@ pub struct ImagePass {
     pub height: usize,
 }
 
-/// Frames kept in memory between the two passes up to this many bytes of RGB + mask.
+/// Frames kept in memory between the two passes up to this many bytes of RGB + mask (of
+/// their Ω pixels only: 31 frames of 1080p at stride 2).
 const CACHE_BYTES: usize = 256 << 20;
+
+type Pixels = (Vec<[f32; 3]>, Vec<f32>);
+
+/// A frame's RGB and emitter mask at the pixels of `omega`, in its order: everything the
+/// metrics read of a frame (a quarter of it at stride 2). The metrics over these with
+/// [`compact_subset`] are the metrics over the frame with `omega`, value for value.
+fn omega_pixels(omega: &PixelSubset, (rgb, emitter): Pixels) -> Pixels {
+    let idx = omega.indices();
+    (
+        idx.iter().map(|&i| rgb[i]).collect(),
+        idx.iter().map(|&i| emitter[i]).collect(),
+    )
+}
+
+/// Every pixel of the image [`omega_pixels`] makes: Ω's every `stride`-th column and row of a
+/// `width` × `height` frame are ⌈width / stride⌉ × ⌈height / stride⌉ pixels, in row order.
+fn compact_subset(omega: &PixelSubset) -> PixelSubset {
+    let c = PixelSubset::new(
+        omega.width.div_ceil(omega.stride),
+        omega.height.div_ceil(omega.stride),
+        1,
+    );
+    debug_assert_eq!(c.len(), omega.len());
+    c
+}
 
 /// §7.3 metrics of every series, reading the raw EXRs twice (once for Y_n, once for the
 /// differences) unless they fit in memory. `None` (with the reason) when a committed frame has
@@ -234,7 +260,6 @@ pub fn image_pass(
         Ok(p) => p,
         Err(why) => return Ok(Err(why)),
     };
-    type Pixels = (Vec<[f32; 3]>, Vec<f32>);
     let read = |rel: &str| -> Result<(usize, usize, Pixels), Failure> {
         let fr = read_exr(&dir.join(rel))?;
         Ok((fr.width, fr.height, (fr.rgb, fr.emitter)))
@@ -245,7 +270,7 @@ pub fn image_pass(
     let mut cached_bytes = 0usize;
     let mut pct = LuminancePercentile::new();
     let mut size: Option<(usize, usize)> = None;
-    let mut omega: Option<PixelSubset> = None;
+    let mut omega: Option<(PixelSubset, PixelSubset)> = None;
     let steps = 2 * paths.len();
     // Decoded a thread's worth of frames at a time (PIZ decoding is most of this pass's
     // serial time: 263 M instructions for a 320×180 demo frame), used in frame order.
@@ -264,7 +289,8 @@ pub fn image_pass(
         match size {
             None => {
                 size = Some((w, h));
-                omega = Some(PixelSubset::new(w, h, stride));
+                let full = PixelSubset::new(w, h, stride);
+                omega = Some((compact_subset(&full), full));
             }
             Some(s) if s != (w, h) => {
                 return Err(Failure::Input(format!(
@@ -274,9 +300,10 @@ pub fn image_pass(
             }
             _ => {}
         }
-        let omega = omega.as_ref().expect("set above");
-        pct.add_frame(omega, &px.0, Some(&px.1));
-        let bytes = w * h * 16;
+        let (compact, full) = omega.as_ref().expect("set above");
+        let px = omega_pixels(full, px);
+        pct.add_frame(compact, &px.0, Some(&px.1));
+        let bytes = px.0.len() * 16;
         if cached_bytes + bytes <= CACHE_BYTES {
             cached_bytes += bytes;
             cache.push(Some(px));
@@ -285,13 +312,13 @@ pub fn image_pass(
         }
     }
     let (width, height) = size.expect("at least one frame");
-    let omega = omega.expect("at least one frame");
-    let omega_pixels = omega.len();
+    let (compact, full) = omega.expect("at least one frame");
+    let omega_len = full.len();
     let y_n = pct
         .value(eyeadapt_color::DEFAULT_Y_PERCENTILE)
         .filter(|y| *y > 0.0)
         .unwrap_or(1.0);
-    let conv = LabConverter::new(omega, y_n);
+    let conv = LabConverter::new(compact, y_n);
 
     // Second pass: per frame, the raw Lab once, then every series in parallel (each series'
     // own reduction stays sequential, so the result does not depend on the thread count).
@@ -301,7 +328,7 @@ pub fn image_pass(
         on_frame(paths.len() + k + 1, steps);
         let px = match cache[k].take() {
             Some(px) => px,
-            None => read(rel)?.2,
+            None => omega_pixels(&full, read(rel)?.2),
         };
         let raw = conv.convert(&px.0, Some(&px.1), None);
         let de_raw = match &prev_raw {
@@ -323,7 +350,7 @@ pub fn image_pass(
             .map(|a| a.finish(eyeadapt_color::DEFAULT_DE_THRESHOLD))
             .collect(),
         y_n,
-        omega_pixels,
+        omega_pixels: omega_len,
         width,
         height,
     }))
@@ -365,4 +392,60 @@ fn raw_exrs(dir: &Path, m: &Manifest) -> Result<Result<Vec<(u32, String)>, Strin
         }
     }
     Ok(Ok(paths))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn omega_pixels_give_the_full_frames_metrics_value_for_value() {
+        // Odd sizes, so that Ω's last column and row are partial; an emitter pixel, a NaN and
+        // a negative channel among them.
+        for (w, h, stride) in [(7, 5, 2), (6, 4, 2), (9, 7, 3), (4, 3, 1)] {
+            let rgb: Vec<[f32; 3]> = (0..w * h)
+                .map(|i| {
+                    let k = i as f32;
+                    match i % 11 {
+                        3 => [f32::NAN, 0.2, 0.3],
+                        5 => [-0.1, 0.4 + 0.01 * k, 0.2],
+                        _ => [0.05 * k, 0.5 + 0.02 * k, 1.0 - 0.01 * k],
+                    }
+                })
+                .collect();
+            let emitter: Vec<f32> = (0..w * h).map(|i| (i % 7 == 2) as u8 as f32).collect();
+            let full = PixelSubset::new(w, h, stride);
+            let compact = compact_subset(&full);
+            assert_eq!(compact.len(), full.len(), "{w}×{h}/{stride}");
+            let px = omega_pixels(&full, (rgb.clone(), emitter.clone()));
+
+            let (mut p_full, mut p_compact) =
+                (LuminancePercentile::new(), LuminancePercentile::new());
+            p_full.add_frame(&full, &rgb, Some(&emitter));
+            p_compact.add_frame(&compact, &px.0, Some(&px.1));
+            assert_eq!(p_full.count(), p_compact.count());
+            let q = |p: &LuminancePercentile| p.value(0.9).map(f64::to_bits);
+            assert_eq!(q(&p_full), q(&p_compact));
+
+            let m = DMat3::from_diagonal(DVec3::new(1.1, 0.9, 1.3));
+            let bits = |lab: eyeadapt_color::LabImage| {
+                lab.0
+                    .iter()
+                    .flatten()
+                    .map(|c| c.to_bits())
+                    .collect::<Vec<_>>()
+            };
+            let (c_full, c_compact) = (
+                LabConverter::new(full.clone(), 0.8),
+                LabConverter::new(compact.clone(), 0.8),
+            );
+            for mat in [None, Some(&m)] {
+                assert_eq!(
+                    bits(c_full.convert(&rgb, Some(&emitter), mat)),
+                    bits(c_compact.convert(&px.0, Some(&px.1), mat)),
+                    "{w}×{h}/{stride}"
+                );
+            }
+        }
+    }
 }
