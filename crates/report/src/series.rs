@@ -217,7 +217,7 @@ pub struct ImagePass {
 }
 
 /// Frames kept in memory between the two passes up to this many bytes of RGB + mask (of
-/// their Ω pixels only: 31 frames of 1080p at stride 2).
+/// their Ω pixels only: 32 frames of 1080p at stride 2, against 8 whole ones).
 const CACHE_BYTES: usize = 256 << 20;
 
 type Pixels = (Vec<[f32; 3]>, Vec<f32>);
