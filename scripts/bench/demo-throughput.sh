@@ -50,14 +50,14 @@ for r in $(seq "$ROUNDS"); do
         echo "round $r $which: $n frames" >&2
     done
 done
-python3 - "$WORK/times" "$FRAMES" "$ROUNDS" "${OVERRIDES[*]}" <<'PY' | tee "$WORK/report.txt"
+python3 - "$WORK/times" "$FRAMES" "$ROUNDS" "$ASKED" <<'PY' | tee "$WORK/report.txt"
 import statistics, sys
 rows = [l.split() for l in open(sys.argv[1])]
 fph = {}
 for which, n, s, e in rows:
     fph.setdefault(which, []).append(3600 * int(n) / (float(e) - float(s)))
 b, a = statistics.median(fph["before"]), statistics.median(fph["after"])
-extra = f" with {sys.argv[4]}" if sys.argv[4] else ""
+extra = f" with{sys.argv[4]}" if sys.argv[4] else ""
 print(f"Demo job{extra}, frames {sys.argv[2]}, {sys.argv[3]} alternating rounds (wall time of the whole sequence command):")
 for k in ("before", "after"):
     print(f"  {k:<6} median {statistics.median(fph[k]):7.0f} frames/hour  (runs: {', '.join(f'{x:.0f}' for x in fph[k])})")
