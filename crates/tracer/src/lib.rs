@@ -46,6 +46,7 @@ mod path_state;
 mod plastic_table;
 mod portal;
 mod pplastic;
+mod prefetch;
 mod principled;
 mod principled_lobes;
 mod principled_thin;

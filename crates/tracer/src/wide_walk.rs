@@ -17,6 +17,7 @@
 //! prefetched before the node's leaves are tested ([`WideBvh::prefetch`]).
 use crate::accel::SlotHit;
 use crate::isa::NodeTest;
+use crate::prefetch::prefetch;
 use crate::wide_bvh::WideBvh;
 use crate::wide_test::Slab;
 use obvhs::ray::Ray;
@@ -157,18 +158,9 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
 /// other two; asking for all four measured no better at 1M triangles).
 #[inline(always)]
 fn prefetch_node(bvh: &WideBvh, i: u32) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::*;
-        let p = bvh.nodes.as_ptr().wrapping_add(i as usize) as *const i8;
-        // SAFETY: a prefetch never faults.
-        unsafe {
-            _mm_prefetch::<_MM_HINT_T0>(p);
-            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(128));
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = (bvh, i);
+    let p = bvh.nodes.as_ptr().wrapping_add(i as usize) as *const u8;
+    prefetch(p);
+    prefetch(p.wrapping_add(128));
 }
 
 /// Walks the nodes `ray` enters and hands each entered node's hit leaf slots to `leaves`,
