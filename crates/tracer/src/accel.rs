@@ -8,7 +8,6 @@
 //! puts these together into the scene's two levels.
 use crate::collapse::{Leaf, collapse};
 use crate::isa::{Baseline, NodeTest};
-use crate::prefetch::prefetch;
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
@@ -228,7 +227,6 @@ impl Accel {
     ) -> ClosestLeaves<'a> {
         ClosestLeaves {
             packs: &self.packs,
-            info: &self.info,
             shear,
             best,
         }
@@ -348,9 +346,6 @@ impl Accel {
 /// the ray and becomes `best`.
 struct ClosestLeaves<'a> {
     packs: &'a [Tri4],
-    /// The slot records, of which the closest hit's is read after the walk: asked for as
-    /// soon as a hit becomes the closest, so that the rest of the walk hides the miss.
-    info: &'a [TriInfo],
     shear: &'a Shear,
     best: &'a mut Option<SlotHit>,
 }
@@ -361,9 +356,10 @@ impl Leaves for ClosestLeaves<'_> {
         for_blocks(base, mask, |block, lanes| {
             if let Some((t, lane)) = self.packs[block as usize].closest(r, self.shear, lanes) {
                 r.tmax = t;
-                let slot = block * 4 + lane;
-                prefetch(self.info.as_ptr().wrapping_add(slot as usize));
-                *self.best = Some(SlotHit { t, slot });
+                *self.best = Some(SlotHit {
+                    t,
+                    slot: block * 4 + lane,
+                });
             }
             false
         })
