@@ -7,7 +7,7 @@
 //! looks anything up through an index list and a leaf is one four-lane test. [`crate::geometry`]
 //! puts these together into the scene's two levels.
 use crate::collapse::{Leaf, collapse};
-use crate::isa::{Baseline, NodeTest};
+use crate::isa::{Baseline, NodeTest, Prefetching};
 use crate::traverse_pair::{Walk, walk_pair};
 use crate::tri4::{Shear, Tri4};
 use crate::triangle::normal_and_area;
@@ -214,7 +214,11 @@ impl Accel {
             stack: shadow_state,
             leaves: self.blocking_leaves(&shadow_shear, &mut blocked),
         };
-        walk_pair(&self.wide, test, a, b);
+        if self.wide.prefetch {
+            walk_pair(&self.wide, Prefetching(test), a, b);
+        } else {
+            walk_pair(&self.wide, test, a, b);
+        }
         (best, !blocked)
     }
 
@@ -255,7 +259,11 @@ impl Accel {
         state: &mut WalkStack,
         leaves: impl Leaves,
     ) {
-        walk8::<ORDERED>(&self.wide, test, &mut { *ray }, state, leaves);
+        if self.wide.prefetch {
+            walk8::<ORDERED>(&self.wide, Prefetching(test), &mut { *ray }, state, leaves);
+        } else {
+            walk8::<ORDERED>(&self.wide, test, &mut { *ray }, state, leaves);
+        }
     }
 
     /// True when nothing blocks the segment from `origin` along `dir` (unit) up to `tmax`.
@@ -328,6 +336,13 @@ impl Accel {
     #[cfg(test)]
     pub(crate) fn wide(&self) -> &WideBvh {
         &self.wide
+    }
+
+    /// This structure with its walks never prefetching (to compare the two).
+    #[cfg(test)]
+    pub(crate) fn without_prefetch(mut self) -> Accel {
+        self.wide.prefetch = false;
+        self
     }
 
     pub fn triangle_count(&self) -> usize {

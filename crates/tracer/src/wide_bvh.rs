@@ -46,10 +46,11 @@ pub struct WideBvh {
 }
 
 /// The size of nodes from which the walks prefetch the inner children a node test enters,
-/// before testing its leaves: a structure this large is mostly outside the core's L2, and a
-/// child's node arrives while the leaves are tested (the 1M-triangle suite scene's render call
-/// −6 %, matpreview's −3 %). Below it the nodes stay cached and the prefetches are only
-/// instructions (three rooms +1.6 %, the 1 000-triangle ray sets 2–5 % slower).
+/// before testing its leaves ([`crate::isa::Prefetching`]): a structure this large is mostly
+/// outside the core's L2, and a child's node arrives while the leaves are tested (the
+/// 1M-triangle suite scene's render call −5 to −6 %, matpreview's 0 to −3 %; 1M-triangle
+/// incoherent rays +15 to +20 %, shadow rays +20 to +30 %). Below it the nodes stay cached and
+/// the prefetches are only instructions (the 1 000-triangle ray sets 2–5 % slower).
 pub(crate) const PREFETCH_MIN_BYTES: usize = 256 << 10;
 
 impl WideBvh {

@@ -14,7 +14,8 @@
 //! (`ORDERED` false; shadow rays 2-5 % fewer instructions). Its leaves never shorten the ray,
 //! so every child it pushed is still within reach when popped, and it skips that check
 //! (2.6 % fewer). In a structure too large for the core's L2 the inner children entered are
-//! prefetched before the node's leaves are tested ([`WideBvh::prefetch`]).
+//! prefetched before the node's leaves are tested (a [`crate::isa::Prefetching`] node test,
+//! which [`crate::accel`] uses where [`WideBvh::prefetch`] says).
 use crate::accel::SlotHit;
 use crate::isa::NodeTest;
 use crate::prefetch::prefetch;
@@ -60,8 +61,6 @@ pub struct Cursor8<T, const ORDERED: bool> {
     height: usize,
     slab: Slab,
     isa: T,
-    /// [`WideBvh::prefetch`], kept where the steps find it without a load.
-    prefetch: bool,
 }
 
 impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
@@ -73,7 +72,6 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
             height: 0,
             slab: Slab::new(ray),
             isa,
-            prefetch: bvh.prefetch,
         })
     }
 
@@ -92,11 +90,7 @@ impl<T: NodeTest, const ORDERED: bool> Cursor8<T, ORDERED> {
         let leaf = mask & node.leaves;
         // The inner children entered are asked for before the leaves are tested, so that the
         // next node's lines are on their way while the triangles are (large structures only).
-        let mut pre = if self.prefetch {
-            mask & !node.leaves
-        } else {
-            0
-        };
+        let mut pre = if T::PREFETCH { mask & !node.leaves } else { 0 };
         while pre != 0 {
             let c = (pre.trailing_zeros() & 7) as usize;
             pre &= pre - 1;

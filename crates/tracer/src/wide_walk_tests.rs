@@ -209,3 +209,36 @@ fn a_negative_zero_direction_component_still_hits() {
         assert!(!accel.unblocked(&ray, &mut WalkStack::default()));
     }
 }
+
+/// A structure past `PREFETCH_MIN_BYTES` of nodes is walked with the prefetching node test; its
+/// closest hits, shadow answers and paired walks are those of the same nodes walked without.
+#[test]
+fn prefetching_walks_answer_what_plain_walks_do() {
+    let tris = soup(30_000, 9);
+    let fetching = Accel::build(&tris);
+    assert!(fetching.wide().prefetch, "{} nodes", fetching.nodes().len());
+    let plain = Accel::build(&tris).without_prefetch();
+    let key = |h: Option<crate::accel::SlotHit>| h.map(|h| (h.t.to_bits(), h.slot));
+    let (mut a, mut b) = (WalkStack::default(), WalkStack::default());
+    let (mut hits, mut blocked) = (0, 0);
+    for ray in rays(&tris, 3000) {
+        let shadow = Ray::new(ray.origin, -ray.direction, 0.0, 6.0);
+        let got = fetching.closest(&ray, &mut a);
+        assert_eq!(key(got), key(plain.closest(&ray, &mut b)));
+        let free = fetching.unblocked(&shadow, &mut a);
+        assert_eq!(free, plain.unblocked(&shadow, &mut b));
+        let (mut c, mut d) = (WalkStack::default(), WalkStack::default());
+        let (pair_hit, pair_free) =
+            fetching.closest_and_unblocked_with(Baseline, (&ray, &mut c), (&shadow, &mut d));
+        assert_eq!((key(pair_hit), pair_free), (key(got), free));
+        #[cfg(target_arch = "x86_64")]
+        if let Some(wide) = crate::isa::avx2() {
+            assert_eq!(key(fetching.closest_with(wide, &ray, &mut a)), key(got));
+            assert_eq!(fetching.unblocked_with(wide, &shadow, &mut a), free);
+        }
+        hits += got.is_some() as u32;
+        blocked += !free as u32;
+    }
+    assert!((300..2700).contains(&hits), "{hits} hits");
+    assert!((300..2700).contains(&blocked), "{blocked} blocked");
+}
