@@ -41,7 +41,7 @@ impl NodeTest for Baseline {
 /// `T`'s node test, with the walks prefetching the inner children it enters before the node's
 /// leaves are tested ([`crate::wide_walk`]), for structures mostly outside the core's L2
 /// ([`crate::wide_bvh::WideBvh::prefetch`]). A type of its own, so that a walk of a small
-/// structure carries no trace of it (a per-step check of a flag cost three rooms 1.5-2 %).
+/// structure carries no trace of it (a per-step check of a flag cost three rooms 1.3–2.2 %).
 #[derive(Clone, Copy, Debug)]
 pub struct Prefetching<T>(pub T);
 
