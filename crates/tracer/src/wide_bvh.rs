@@ -41,7 +41,9 @@ impl Node8 {
 #[derive(Clone, Debug, Default)]
 pub struct WideBvh {
     pub(crate) nodes: Vec<Node8>,
-    /// Whether the walks prefetch the inner children they enter ([`PREFETCH_MIN_BYTES`]).
+    /// Whether the walks prefetch the inner children they enter ([`PREFETCH_MIN_BYTES`]). A
+    /// mesh's walks ([`crate::accel`]) follow it; the instance level's do not look at it (no
+    /// scene measured has a top level that large).
     pub(crate) prefetch: bool,
 }
 
