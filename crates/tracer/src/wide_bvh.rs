@@ -50,9 +50,9 @@ pub struct WideBvh {
 /// The size of nodes from which the walks prefetch the inner children a node test enters,
 /// before testing its leaves ([`crate::isa::Prefetching`]): a structure this large is mostly
 /// outside the core's L2, and a child's node arrives while the leaves are tested (the
-/// 1M-triangle suite scene's render call −5 to −6 %, matpreview's 0 to −3 %; 1M-triangle
-/// incoherent rays +15 to +20 %, shadow rays +20 to +30 %). Below it the nodes stay cached and
-/// the prefetches are only instructions (the 1 000-triangle ray sets 2–5 % slower).
+/// 1M-triangle suite scene's render call −5 to −6 %, matpreview's −3 to +0.5 %; 1M-triangle
+/// incoherent rays +6 to +22 %, shadow rays +18 to +27 %). Below it the nodes stay cached and
+/// the prefetches are only instructions (the 1 000-triangle ray sets up to 8 % slower).
 pub(crate) const PREFETCH_MIN_BYTES: usize = 256 << 10;
 
 impl WideBvh {
