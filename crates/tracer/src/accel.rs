@@ -165,6 +165,12 @@ impl Accel {
         }
     }
 
+    /// The nodes the queries walk and the triangle blocks their leaves name.
+    #[inline(always)]
+    pub(crate) fn walk_data(&self) -> (&[crate::wide_bvh::Node8], &[Tri4]) {
+        (&self.wide.nodes, &self.packs)
+    }
+
     /// Closest hit along `dir` (unit) from `origin`, within (0, tmax).
     #[inline]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmax: f32) -> Option<SlotHit> {

@@ -9,9 +9,8 @@
 //! samples are splatted into a private buffer covering the rows they reach; the buffers are
 //! then added into the image one row after another, in row order, so the sums (and bits) do
 //! not depend on the thread count. The AOVs stay per-pixel means.
-use crate::guiding::{Guiding, Record, SdTree, Tally, passes, split_threshold};
-use crate::integrator::{AchromaticSpecular, Origin, PathSettings, trace_guided};
-use crate::sampler::{SampleStream, StreamSeeds, hash_key};
+use crate::guiding::{Guiding, SdTree, Tally, passes, split_threshold};
+use crate::integrator::{AchromaticSpecular, PathSettings};
 use crate::scene_data::SceneData;
 use crate::trig::sincos_turns;
 use eyeadapt_scene::{FilterWeights, PixelFilter, Projection};
@@ -19,6 +18,9 @@ use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use std::time::Instant;
+
+#[path = "film_pixel.rs"]
+mod pixel;
 
 /// Where the camera is and what it sees (a static camera or one pose of a camera path).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -377,79 +379,6 @@ impl Pass<'_> {
                 if let Some(t) = tally.as_deref_mut() {
                     t.add(&records);
                 }
-            }
-        }
-    }
-
-    /// Renders the pass's samples of pixel (x, y) into `acc` and the row's `splat` buffer.
-    fn pixel(
-        &self,
-        (x, y): (usize, usize),
-        acc: &mut PixelAcc,
-        splat: &mut [(DVec3, f64)],
-        weights: &FilterWeights,
-        mut records: Option<&mut Vec<Record>>,
-    ) {
-        let (settings, view) = (self.settings, self.view);
-        let basis = view.basis();
-        let thin_lens = match view.projection {
-            Projection::ThinLens { .. } => true,
-            Projection::Shifted {
-                aperture_radius, ..
-            } => aperture_radius > 0.0,
-            _ => false,
-        };
-        let splats = settings.filter != PixelFilter::Box;
-        let key = hash_key(&[settings.seed, settings.frame as u64, x as u64, y as u64]);
-        let seeds = StreamSeeds::new(key);
-        // The aperture has its own stream, so pinhole renders keep their samples.
-        let lens_seeds = thin_lens.then(|| StreamSeeds::new(hash_key(&[key, 0x1E45])));
-        let mut scratch = self.scene.geometry.scratch();
-        for i in self.samples.clone() {
-            let mut s = SampleStream::seeded(&seeds, i);
-            // Dimensions 2-3 of this chunk are the first vertex's light sample (see `trace`).
-            let j = s.next_2d();
-            let lens = lens_seeds
-                .as_ref()
-                .map_or([0.5; 2], |k| SampleStream::seeded(k, i).next_2d());
-            let (origin, d) = view.ray(basis, x as f32 + j[0], y as f32 + j[1], lens);
-            let p = trace_guided(
-                &mut scratch,
-                self.scene,
-                (origin, d),
-                Origin::Camera,
-                &mut s,
-                settings.path,
-                Some(settings.wcam_specular),
-                self.guide,
-                records.as_deref_mut(),
-            );
-            let parts = [p.l, p.achromatic, p.irradiance, p.albedo];
-            if parts.iter().any(|v| !v.is_finite()) {
-                acc.invalid += 1;
-                continue;
-            }
-            acc.valid += 1;
-            acc.l += d3(p.l);
-            if splats {
-                splat_sample(
-                    splat,
-                    weights,
-                    (view.width as usize, settings.filter.reach()),
-                    (x as f32 + j[0], j[1]),
-                    d3(p.l),
-                );
-            }
-            acc.a += d3(p.achromatic);
-            acc.e += d3(p.irradiance);
-            acc.albedo += d3(p.albedo);
-            if p.hit {
-                acc.hits += 1;
-                acc.depth += p.depth as f64;
-                acc.normal += d3(p.normal);
-            }
-            if p.emitter {
-                acc.emitters += 1;
             }
         }
     }

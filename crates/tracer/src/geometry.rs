@@ -72,6 +72,8 @@ pub struct RayScratch {
     shadow: WalkStack,
     /// The see-through surfaces a shadow ray crosses (`shadow.rs`).
     pub(crate) crossings: Vec<Hit>,
+    /// A packet walk's stack ([`crate::packet`]).
+    packet: Vec<crate::packet::Pending>,
 }
 
 /// A ray's closest hit: distance, instance, the mesh's triangle and the BVH slot it sits in.
@@ -209,6 +211,7 @@ impl Geometry {
             bottom: WalkStack::default(),
             shadow: WalkStack::default(),
             crossings: Vec::new(),
+            packet: Vec::new(),
         }
     }
 

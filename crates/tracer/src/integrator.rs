@@ -6,7 +6,7 @@
 //! lighting, −1 is unlimited. Russian roulette starts once `rr_depth` segments have been
 //! traced, with survival probability min(max(throughput), 0.95).
 use crate::emitter::luminance;
-use crate::geometry::RayScratch;
+use crate::geometry::{Hit, RayScratch};
 use crate::guiding::{Record, SdTree};
 use crate::path_state::{PathState, ShadowRay};
 use crate::sampler::SampleStream;
@@ -195,6 +195,7 @@ pub fn trace(
         aovs,
         None,
         None,
+        None,
     )
 }
 
@@ -202,6 +203,8 @@ pub fn trace(
 /// appending the path's training records to it. Without a guide it is [`trace`], bit for bit.
 /// `scratch` is the traversal state, reused: a caller tracing many paths (a pixel's samples)
 /// zeroes its two 256-byte stacks once instead of once a path (80 instructions a sample).
+/// `first`, when given, is the closest hit of the path's first ray, found already (a pixel's
+/// camera rays are walked together, `packet.rs`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn trace_guided(
     scratch: &mut RayScratch,
@@ -213,6 +216,7 @@ pub(crate) fn trace_guided(
     aovs: Option<AchromaticSpecular>,
     guide: Option<&SdTree>,
     records: Option<&mut Vec<Record>>,
+    mut first: Option<Option<Hit>>,
 ) -> PathSample {
     // The first vertex's light sample comes from the dimensions right after the caller's
     // direction (the pixel position, the eye's cardioid direction), in the same 4-D Sobol chunk:
@@ -233,9 +237,12 @@ pub(crate) fn trace_guided(
     loop {
         s.start_group();
         let hit = match shadow.take() {
-            None => scene
-                .geometry
-                .intersect_with(scratch, path.o, path.d, f32::INFINITY),
+            None => match first.take() {
+                Some(hit) => hit,
+                None => scene
+                    .geometry
+                    .intersect_with(scratch, path.o, path.d, f32::INFINITY),
+            },
             Some(sh) => {
                 let (hit, free) = scene.geometry.intersect_and_unoccluded(
                     scratch,
@@ -339,10 +346,32 @@ mod tests {
                     None,
                     None,
                     None,
+                    None,
+                );
+                // The first hit found beforehand (as a packet of camera rays finds it).
+                let first = scene
+                    .geometry
+                    .intersect_with(&mut shared, o, d, f32::INFINITY);
+                let mut s3 = s;
+                let given = trace_guided(
+                    &mut shared,
+                    &scene,
+                    (o, d),
+                    Origin::Camera,
+                    &mut s3,
+                    settings,
+                    None,
+                    None,
+                    None,
+                    Some(first),
                 );
                 assert_eq!(
                     fresh.l.to_array().map(f32::to_bits),
                     reused.l.to_array().map(f32::to_bits)
+                );
+                assert_eq!(
+                    fresh.l.to_array().map(f32::to_bits),
+                    given.l.to_array().map(f32::to_bits)
                 );
                 hits += (fresh.l != Vec3A::ZERO) as u32;
             }

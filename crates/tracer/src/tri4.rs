@@ -63,7 +63,30 @@ impl Shear {
     }
 }
 
+impl Shear {
+    /// The axes that become x, y and z.
+    pub fn k(&self) -> [usize; 3] {
+        self.k
+    }
+
+    /// sx, sy and sz.
+    pub fn scale(&self) -> [f32; 3] {
+        self.s.map(|s| s[0])
+    }
+
+    /// The origin's components along the axes that become x, y and z.
+    pub fn origin(&self) -> [f32; 3] {
+        self.o.map(|o| o[0])
+    }
+}
+
 impl Tri4 {
+    /// Vertex `i` (0 to 2) of the triangle in lane `lane`: x, y, z.
+    #[inline(always)]
+    pub fn vertex(&self, i: usize, lane: usize) -> [f32; 3] {
+        self.v[i].map(|axis| axis[lane])
+    }
+
     /// Puts `tri` into lane `lane`.
     pub fn set(&mut self, lane: usize, tri: &Triangle) {
         for (dst, src) in self.v.iter_mut().zip([tri.v0, tri.v1, tri.v2]) {

@@ -28,6 +28,29 @@ impl Geometry {
         self.intersect_in(Baseline, scratch, ray)
     }
 
+    /// The closest hits of eight rays from `origin[l]` along `dir[l]` (unit), for the lanes of
+    /// `active`: one packet walk ([`crate::packet`]) in a flat structure, eight walks in two
+    /// levels. A packet's answers are its own (see `packet.rs`), the same on every machine.
+    pub fn intersect8(
+        &self,
+        scratch: &mut RayScratch,
+        origin: [Vec3A; 8],
+        dir: [Vec3A; 8],
+        active: u32,
+    ) -> [Option<Hit>; 8] {
+        match &self.levels {
+            Levels::Flat(a) => {
+                let rays = std::array::from_fn(|l| Ray::new(origin[l], dir[l], 0.0, f32::INFINITY));
+                a.closest8(&rays, active, &mut scratch.packet)
+                    .map(|h| h.map(|h| flat_hit(a, h)))
+            }
+            Levels::Two { .. } => std::array::from_fn(|l| match active >> l & 1 {
+                0 => None,
+                _ => self.intersect_with(scratch, origin[l], dir[l], f32::INFINITY),
+            }),
+        }
+    }
+
     /// [`Geometry::intersect_in`] compiled for AVX2, so that its node tests inline.
     ///
     /// # Safety
