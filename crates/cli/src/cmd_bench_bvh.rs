@@ -10,7 +10,8 @@
 use crate::args::BenchArgs;
 use eyeadapt_sequencer::Failure;
 use eyeadapt_tracer::{
-    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, WalkStack, build_params, hash_key, mix64,
+    Accel, BvhBuildParams, InputTri, ObvhsBuildInput, PacketStack, WalkStack, build_params,
+    hash_key, mix64,
 };
 use glam::Vec3A;
 use rayon::prelude::*;
@@ -146,8 +147,33 @@ fn ray_set(
     }
 }
 
-/// The three ray sets, each 2^20 rays, the same on every run and thread count.
-fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
+/// Times the packet walk over `rays` eight at a time (eight neighbours of a row, as a pixel's
+/// samples are in a render), each worker reusing one stack, and counts the hits.
+fn packet_set(accel: &Accel, rays: &[(Vec3A, Vec3A)]) -> RaySet {
+    let (seconds, count) = timed(|| {
+        rays.par_chunks(8)
+            .with_min_len(128)
+            .map_init(PacketStack::default, |stack, group| {
+                let (mut o, mut d) = ([Vec3A::ZERO; 8], [Vec3A::Z; 8]);
+                for (l, &(a, b)) in group.iter().enumerate() {
+                    (o[l], d[l]) = (a, b);
+                }
+                let active = (1u32 << group.len()) - 1;
+                let hits = accel.intersect8_reusing(stack, o, d, active);
+                hits.iter().filter(|h| h.is_some()).count()
+            })
+            .sum::<usize>()
+    });
+    RaySet {
+        rays: rays.len() as u64,
+        seconds,
+        count,
+    }
+}
+
+/// The ray sets, each 2^20 rays, the same on every run and thread count: primary rays one by
+/// one and in packets of eight, inside rays, shadow rays.
+fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 4] {
     const SIDE: u64 = 1 << 10;
     let key = hash_key(&[0xB7B, n as u64]);
     let (lo, hi) = (accel.bounds_min, accel.bounds_max);
@@ -173,6 +199,7 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
         )
     });
     let primary = ray_set(&rays, closest);
+    let packets = packet_set(accel, &rays);
 
     // Inside: uniform origins in the mesh's bounds, uniform directions, like the bounces of a
     // path tracer (incoherent rays).
@@ -201,7 +228,7 @@ fn trace_rays(accel: &Accel, n: u32) -> [RaySet; 3] {
     let shadow = ray_set(&rays, |state, (o, d)| {
         accel.unoccluded_reusing(state, o, d, 0.5)
     });
-    [primary, inside, shadow]
+    [primary, packets, inside, shadow]
 }
 
 /// The timed builds: the renderer's and obvhs's alone, median and fastest, and the peak RSS
@@ -297,7 +324,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
     let tris = accel.triangle_count();
     let per_m = 1e6 / tris as f64;
     let threads = rayon::current_num_threads();
-    let [primary, inside, shadow] = trace_rays(&accel, n);
+    let [primary, packets, inside, shadow] = trace_rays(&accel, n);
     let closest_mrays =
         (primary.rays + inside.rays) as f64 / (primary.seconds + inside.seconds) / 1e6;
 
@@ -330,11 +357,13 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
         );
     }
     println!(
-        "rays (2^20 each): primary {:.2} M rays/s ({:.1} % hit), inside {:.2} M rays/s ({:.1} % \
-         hit), both closest-hit sets {closest_mrays:.2} M rays/s; shadow {:.2} M rays/s ({:.1} % \
-         unoccluded)",
+        "rays (2^20 each): primary {:.2} M rays/s ({:.1} % hit), in packets of eight {:.2} M \
+         rays/s ({:.1} % hit), inside {:.2} M rays/s ({:.1} % hit), both closest-hit sets \
+         {closest_mrays:.2} M rays/s; shadow {:.2} M rays/s ({:.1} % unoccluded)",
         primary.mrays(),
         primary.percent(),
+        packets.mrays(),
+        packets.percent(),
         inside.mrays(),
         inside.percent(),
         shadow.mrays(),
@@ -345,7 +374,7 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
          build_min_s={build_min:.6} obvhs_s={obvhs:.6} mtris_per_s={:.3} memory_bytes_per_mtri={:.0} peak_rss_bytes={rss_peak:.0} \
          build_rss_bytes_per_mtri={:.0} primary_mrays_per_s={:.3} inside_mrays_per_s={:.3} \
          closest_mrays_per_s={closest_mrays:.3} shadow_mrays_per_s={:.3} primary_percent={:.2} \
-         inside_percent={:.2} shadow_percent={:.2}",
+         inside_percent={:.2} shadow_percent={:.2} packet_mrays_per_s={:.3} packet_percent={:.2}",
         times.len(),
         tris as f64 / build / 1e6,
         mem * per_m,
@@ -355,7 +384,9 @@ pub fn run(a: BenchArgs) -> Result<(), Failure> {
         shadow.mrays(),
         primary.percent(),
         inside.percent(),
-        shadow.percent()
+        shadow.percent(),
+        packets.mrays(),
+        packets.percent()
     );
     Ok(())
 }

@@ -7,11 +7,25 @@ use crate::accel::{Accel, SlotHit};
 #[cfg(target_arch = "x86_64")]
 use crate::isa::Avx2;
 use crate::isa::Baseline;
+use crate::packet::PacketStack;
 use crate::wide_walk::WalkStack;
 use glam::Vec3A;
 use obvhs::ray::Ray;
 
 impl Accel {
+    /// The closest hits of eight rays from `origin[l]` along `dir[l]` (unit) within (0, ∞), for
+    /// the lanes of `active`, walked as one packet ([`crate::packet`]) with `stack` reused.
+    pub fn intersect8_reusing(
+        &self,
+        stack: &mut PacketStack,
+        origin: [Vec3A; 8],
+        dir: [Vec3A; 8],
+        active: u32,
+    ) -> [Option<SlotHit>; 8] {
+        let rays = std::array::from_fn(|l| Ray::new(origin[l], dir[l], 0.0, f32::INFINITY));
+        self.closest8(&rays, active, stack)
+    }
+
     /// [`Accel::intersect`] with `state` reused and the wide node test where there is one.
     pub fn intersect_reusing(
         &self,

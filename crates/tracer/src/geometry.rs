@@ -73,7 +73,7 @@ pub struct RayScratch {
     /// The see-through surfaces a shadow ray crosses (`shadow.rs`).
     pub(crate) crossings: Vec<Hit>,
     /// A packet walk's stack ([`crate::packet`]).
-    packet: Vec<crate::packet::Pending>,
+    packet: crate::packet::PacketStack,
 }
 
 /// A ray's closest hit: distance, instance, the mesh's triangle and the BVH slot it sits in.
@@ -211,7 +211,7 @@ impl Geometry {
             bottom: WalkStack::default(),
             shadow: WalkStack::default(),
             crossings: Vec::new(),
-            packet: Vec::new(),
+            packet: Default::default(),
         }
     }
 

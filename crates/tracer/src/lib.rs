@@ -87,6 +87,7 @@ pub use crate::interaction::SurfaceInteraction;
 pub use crate::isa::simd_setting;
 pub use crate::lights::LightSet;
 pub use crate::material::Materials;
+pub use crate::packet::PacketStack;
 pub use crate::revision::RENDER_REVISION;
 pub use crate::sampler::{SampleStream, StreamSeeds, hash_key, mix64};
 pub use crate::scene_data::SceneData;

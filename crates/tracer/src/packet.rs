@@ -76,7 +76,11 @@ impl<V: F8> Rays8<V> {
 
 /// A node waiting on the packet's stack: its index, the lanes that entered it, and the entry
 /// distance of the first of them (the order key).
-pub type Pending = (u32, u32, f32);
+type Pending = (u32, u32, f32);
+
+/// A packet walk's stack, kept from packet to packet so that it is allocated once per worker.
+#[derive(Clone, Debug, Default)]
+pub struct PacketStack(Vec<Pending>);
 
 /// The closest hits of the rays of `active` (bit l: lane l), each within its tmin and `tmax[l]`,
 /// in `accel`. `stack` is scratch space, reused.
@@ -86,7 +90,7 @@ pub fn closest8<V: F8>(
     rays: &Rays8<V>,
     tmax: [f32; 8],
     active: u32,
-    stack: &mut Vec<Pending>,
+    PacketStack(stack): &mut PacketStack,
 ) -> [Option<SlotHit>; 8] {
     let (nodes, packs) = accel.walk_data();
     let mut best = V::load(&tmax);
@@ -222,7 +226,7 @@ impl Accel {
         &self,
         rays: &[Ray; 8],
         active: u32,
-        stack: &mut Vec<Pending>,
+        stack: &mut PacketStack,
     ) -> [Option<SlotHit>; 8] {
         let tmax = rays.map(|r| r.tmax);
         #[cfg(target_arch = "x86_64")]
@@ -256,7 +260,7 @@ unsafe fn closest8_avx2(
     rays: &[Ray; 8],
     tmax: [f32; 8],
     active: u32,
-    stack: &mut Vec<Pending>,
+    stack: &mut PacketStack,
 ) -> [Option<SlotHit>; 8] {
     let r = Rays8::<crate::lanes8::Avx2F8>::new(rays);
     closest8(accel, &r, tmax, active, stack)

@@ -64,7 +64,7 @@ fn packets(n: usize, seed: u64) -> Vec<[Ray; 8]> {
 fn closest_both(a: &Accel, rays: &[Ray; 8], active: u32) -> [Option<(u32, u32)>; 8] {
     let tmax = rays.map(|r| r.tmax);
     let bits = |h: [Option<SlotHit>; 8]| h.map(|h| h.map(|h| (h.t.to_bits(), h.slot)));
-    let mut stack = Vec::new();
+    let mut stack = PacketStack::default();
     #[cfg(target_arch = "x86_64")]
     let base = {
         let r = Rays8::<crate::lanes8::Sse2F8>::new(rays);
