@@ -59,6 +59,16 @@ mod x86 {
         )*};
     }
 
+    macro_rules! avx_cmp {
+        ($($name:ident => $pred:ident),*) => {$(
+            #[inline(always)]
+            fn $name(self, b: Self) -> Self {
+                // SAFETY: only reached on CPUs with AVX2 (the type's text).
+                Avx2F8(unsafe { _mm256_cmp_ps::<$pred>(self.0, b.0) })
+            }
+        )*};
+    }
+
     impl F8 for Avx2F8 {
         #[inline(always)]
         fn splat(x: f32) -> Self {
@@ -80,26 +90,9 @@ mod x86 {
         avx!(add => _mm256_add_ps, sub => _mm256_sub_ps, mul => _mm256_mul_ps,
              div => _mm256_div_ps, min => _mm256_min_ps, max => _mm256_max_ps,
              and => _mm256_and_ps, xor => _mm256_xor_ps, andnot => _mm256_andnot_ps);
-        #[inline(always)]
-        fn le(self, b: Self) -> Self {
-            // SAFETY: as above. SSE2's `cmpleps` is the ordered, signalling `<=`.
-            Avx2F8(unsafe { _mm256_cmp_ps::<_CMP_LE_OS>(self.0, b.0) })
-        }
-        #[inline(always)]
-        fn lt(self, b: Self) -> Self {
-            // SAFETY: as above (`cmpltps`).
-            Avx2F8(unsafe { _mm256_cmp_ps::<_CMP_LT_OS>(self.0, b.0) })
-        }
-        #[inline(always)]
-        fn ge(self, b: Self) -> Self {
-            // SAFETY: as above (SSE2's `cmpgeps` is `cmpleps` with the operands swapped).
-            Avx2F8(unsafe { _mm256_cmp_ps::<_CMP_GE_OS>(self.0, b.0) })
-        }
-        #[inline(always)]
-        fn ne(self, b: Self) -> Self {
-            // SAFETY: as above (`cmpneqps`).
-            Avx2F8(unsafe { _mm256_cmp_ps::<_CMP_NEQ_UQ>(self.0, b.0) })
-        }
+        // SSE2's `cmpleps` and `cmpltps` are the ordered, signalling `<=` and `<`, `cmpgeps`
+        // is `cmpleps` with the operands swapped, `cmpneqps` the unordered `!=`.
+        avx_cmp!(le => _CMP_LE_OS, lt => _CMP_LT_OS, ge => _CMP_GE_OS, ne => _CMP_NEQ_UQ);
         #[inline(always)]
         fn blend(self, b: Self, mask: Self) -> Self {
             // SAFETY: as above.

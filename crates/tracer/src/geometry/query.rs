@@ -39,11 +39,9 @@ impl Geometry {
         active: u32,
     ) -> [Option<Hit>; 8] {
         match &self.levels {
-            Levels::Flat(a) => {
-                let rays = std::array::from_fn(|l| Ray::new(origin[l], dir[l], 0.0, f32::INFINITY));
-                a.closest8(&rays, active, &mut scratch.packet)
-                    .map(|h| h.map(|h| flat_hit(a, h)))
-            }
+            Levels::Flat(a) => a
+                .intersect8_reusing(&mut scratch.packet, origin, dir, active)
+                .map(|h| h.map(|h| flat_hit(a, h))),
             Levels::Two { .. } => std::array::from_fn(|l| match active >> l & 1 {
                 0 => None,
                 _ => self.intersect_with(scratch, origin[l], dir[l], f32::INFINITY),
