@@ -58,7 +58,8 @@
 /// 19: a mesh whose vertex normals are its faces' own (within 10⁻⁶ in cosine) shades with the
 ///    geometric normals instead of interpolating them (such meshes, in the last bits; none of
 ///    the pinned scenes has one, so the pins stay; `tests/face_normals.rs` covers it).
-/// 20: a pixel's camera rays are walked eight at a time (`packet.rs`): of two triangles at
+/// 20: a pixel's camera rays are walked eight at a time (`packet.rs`; groups of five or more
+///    samples of a pass): of two triangles at
 ///    exactly one distance, or one at a box's rounding edge, the packet's order of visits may
 ///    report the other (a ray through a shared edge; the built-in interior at 128 × 96, 16 spp:
 ///    one pixel of 12 288, by 9·10⁻⁸; none of the pinned scenes, so the pins stay).
