@@ -305,7 +305,9 @@ mod tests {
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn avx2_and_sse2_lanes_agree_bit_for_bit() {
-        if crate::isa::wide().is_none() {
+        // Whatever EYEADAPT_SIMD says: the comparison only needs the CPU to have AVX2.
+        if crate::isa::avx2().is_none() {
+            eprintln!("no AVX2 on this CPU: nothing to compare");
             return;
         }
         fn all<V: F8>(a: [f32; 8], b: [f32; 8], bits: u32) -> Vec<[u32; 8]> {
